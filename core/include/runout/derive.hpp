@@ -1,0 +1,64 @@
+// Parameters derived from the user's knobs (SPEC §3): stiffnesses per species pair and per
+// species–wall pair, the time step, and the unit of time.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "runout/contact_law.hpp"
+#include "runout/scene.hpp"
+
+namespace runout {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// Coefficients of one interaction (species a with species b, or species a with a wall).
+struct PairCoefficients {
+  double reduced_radius = 0;  // r* = r_a r_b / (r_a + r_b); wall: r_a
+  double reduced_mass = 0;    // m* likewise
+  double k_unload = 0;        // k_U: the design stiffness of SPEC §3
+  double k_load = 0;          // k_L = e_n^2 k_U
+  WaltonBraun::Coefficients walton_braun;
+  LinearDashpot::Coefficients linear_dashpot;
+  Hertz::Coefficients hertz;
+  CundallStrack tangential;
+  double normal_stiffness_for_dt = 0;  // k entering tau_min for the chosen normal model
+};
+
+// Every coefficient the step loop needs, indexed by species (row-major a * n + b).
+struct ContactTable {
+  int species_count = 0;
+  std::vector<PairCoefficients> pair;  // species_count^2, symmetric
+  std::vector<PairCoefficients> wall;  // species_count
+  const PairCoefficients& between(int a, int b) const { return pair[a * species_count + b]; }
+};
+
+// f = exp(-atan(beta)/beta), beta = pi / ln(e_n): peak overlap of a damped linear oscillator in
+// units of v / omega_0 (SPEC §3); 0.56997 for e_n = 0.2, 1 for e_n = 1.
+double peak_overlap_factor(double restitution);
+
+// Dashpot constant c_e (damping = c_e sqrt(m* k)) that gives restitution e_n with the no-tension
+// cut, and the peak overlap in units of (m* v^2 / k)^{2/5} (Hertz) or v sqrt(m*/k) (linear).
+// Solved once by bisection on x'' = -max(0, x^{3/2} + c_e x^{1/4} x') or -max(0, x + c_e x').
+struct DashpotDesign {
+  double damping_constant = 0;
+  double peak_overlap = 0;
+};
+DashpotDesign dashpot_design(double restitution, bool hertz);
+
+double sphere_mass(double radius, double density);      // 4/3 pi r^3 rho (eq. 2.12)
+double sphere_inertia(double mass, double radius);      // 2/5 m r^2 (eq. 2.13)
+
+ContactTable derive_contact_table(const MaterialDef& material, const ContactDef& contact,
+                                  std::span<const SpeciesDef> species, double gravity);
+
+// tau_min over all species pairs and walls: translational and rotational periods of a disc in a
+// ring of N_surr neighbours (SPEC §3; N_surr = 6 for equal discs).
+double minimum_collision_period(const ContactTable& table, std::span<const SpeciesDef> species,
+                                double density, NormalModel model);
+
+// The unit of length is the smallest nominal diameter d; one t* is sqrt(d/g) seconds.
+double unit_length(std::span<const SpeciesDef> species);
+double unit_time(std::span<const SpeciesDef> species, double gravity);
+
+}  // namespace runout

@@ -1,0 +1,54 @@
+// Contact search (SPEC §5): a cell grid finds, at each rebuild, every disc pair and disc–wall
+// pair closer than the skin; between rebuilds only these listed pairs are tested. Contact
+// history lives beside the pairs and is carried across rebuilds by matching (i, j) keys
+// (SPEC §2: it must survive neighbour-list rebuilds).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "runout/particles.hpp"
+#include "runout/walls.hpp"
+
+namespace runout {
+
+// Disc–disc candidate pairs, i < j, sorted by (i, j).
+struct PairContacts {
+  std::vector<std::int32_t> i, j;
+  std::vector<double> overlap_max, tangential_spring;  // history (SPEC §2)
+  std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)
+  std::vector<double> ft;      // this step's tangential force on i along s; torque = r * ft
+  std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
+  // Per disc k, the pairs it belongs to: entries [gather_start[k], gather_start[k+1]) of
+  // gather, each 2 p + side (side 1: k is the pair's j). Fixed order = deterministic sums.
+  std::vector<std::int32_t> gather_start, gather;
+
+  std::size_t size() const { return i.size(); }
+};
+
+// Disc–wall-segment candidate pairs, sorted by (disc, segment).
+struct WallContacts {
+  std::vector<std::int32_t> disc, segment;
+  std::vector<double> overlap_max, tangential_spring;
+  std::vector<double> fx, fy, ft;  // force on the disc, tangential force along s
+  std::vector<std::int32_t> row_start;  // per disc
+
+  std::size_t size() const { return disc.size(); }
+};
+
+class NeighborSearch {
+ public:
+  // Rebuilds both lists for the current positions, keeping the history of pairs present before
+  // and after. `reach` is the skin: pairs with gap < skin are listed.
+  void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
+               int threads, PairContacts& pairs, WallContacts& walls);
+
+ private:
+  std::vector<std::int32_t> cell_start_, cell_disc_;
+  std::vector<std::int32_t> disc_cell_;
+  std::vector<std::vector<std::int32_t>> thread_i_, thread_j_;
+  PairContacts old_pairs_;
+  WallContacts old_walls_;
+};
+
+}  // namespace runout

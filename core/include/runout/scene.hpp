@@ -1,0 +1,108 @@
+// Plain definition structs for a scene, with units and defaults (SPEC §3, §5). The TOML reader
+// (core/io) fills them at the edge; the core never parses text. Lengths are metres unless a
+// name says otherwise; every time a user gives or sees is t* = t sqrt(g/d) (SPEC §4).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace runout {
+
+enum class NormalModel { walton_braun, linear_dashpot, hertz };
+enum class IntegratorKind { symplectic_euler, velocity_verlet };
+
+struct MaterialDef {
+  double density = 2500.0;        // kg/m^3 (thesis §3.1.1)
+  double friction = 0.5;          // particle–particle Coulomb mu
+  double wall_friction = 0.5;     // particle–wall mu
+  double restitution = 0.2;       // particle–particle e_n
+  double wall_restitution = 0.2;  // particle–wall e_n
+};
+
+// The user's stiffness knobs; k_L, k_U, k_s are derived from them (SPEC §3).
+struct ContactDef {
+  NormalModel normal_model = NormalModel::walton_braun;
+  double design_impact_speed = 10.0;  // alphadot0, units of sqrt(g r*)
+  double design_max_overlap = 0.01;   // alphamax, fraction of r*
+  double stiffness_ratio = 1.0;       // kratio = k_s / k_L
+};
+
+struct IntegrationDef {
+  IntegratorKind integrator = IntegratorKind::symplectic_euler;
+  double dt_fraction = 0.1;  // dt = dt_fraction * tau_min (SPEC §3)
+  double skin = 0.2;         // Verlet skin in small diameters d (SPEC §5 contact search)
+  double gravity = 9.81;     // m/s^2
+};
+
+struct SpeciesDef {
+  std::string name;
+  double diameter = 0;     // nominal, m
+  double spread = 0.1;     // each diameter uniform in nominal * [1 - spread, 1 + spread]
+  double area_share = 0;   // share of the total disc area (avalanche scenes)
+};
+
+// One straight rigid wall or a polyline of them. Consecutive segments share a vertex; the
+// vertex acts as one point contact, owned by the earlier segment (walls.hpp).
+struct WallDef {
+  std::string name;
+  std::vector<std::pair<double, double>> points;  // at least two
+  bool bed = false;        // counts as the bed for heights above bed and basal spin (SPEC §6)
+};
+
+struct ParticleDef {
+  double x = 0, y = 0, vx = 0, vy = 0, omega = 0;
+  double diameter = 0;
+  int species = 0;  // index into SceneDef::species
+};
+
+// The thesis geometry of SPEC §5. x = 0 at the foot of the incline, y = 0 on the floor.
+struct AvalancheDef {
+  double incline_angle_deg = 30.0;
+  double incline_length = 50.0;   // along the incline from the gate to the foot, in large diameters D
+  double pile_width = 20.0;       // horizontal distance back wall to gate, in D
+  double floor_length = 250.0;    // from the foot, in D; an end wall closes it
+  double wall_height = 60.0;      // back wall, gate and end wall height above their foot, in D
+  int reference_large_count = 500;  // N0: total disc area = area of N0 large discs (SPEC §5)
+};
+
+struct PreparationDef {
+  std::uint64_t seed = 1;
+  double initial_packing = 0.45;  // disc area / box area when the centres are placed
+  double initial_speed = 1.0;     // random velocities uniform in +-initial_speed sqrt(g d)
+  double growth_time = 0.5;       // t*, e-folding time of the exponential radius growth
+  double settle_ek_threshold = 1e-7;  // settled when E_k/Ep < this ...
+  double settle_hold = 1.0;           // ... for this long (t*), after growth is done
+  double settle_max_time = 200.0;     // t*; not settled by then is an error
+};
+
+struct RestDef {
+  double ek_threshold = 1e-6;  // at rest when E_k/Ep0 < this ...
+  double hold = 2.0;           // ... continuously for this long (t*)
+  double max_time = 2000.0;    // t*; not at rest by then ends the run as not at rest
+};
+
+struct OutputDef {
+  double timeseries_every = 0.5;  // t*
+  double checkpoint_every = 50.0; // t*; 0 disables periodic checkpoints
+  double dump_every = 0.0;        // t*; 0 disables LAMMPS dump frames
+  double end_time = 0.0;          // t*; > 0 stops the run there even if not at rest
+  double basal_layer_packing = 0.7;  // C in H_layer = pi sum r^2 / (L C) (SPEC §6, eq. 4.9)
+};
+
+struct SceneDef {
+  std::string name = "scene";
+  MaterialDef material;
+  ContactDef contact;
+  IntegrationDef integration;
+  std::vector<SpeciesDef> species;
+  std::optional<AvalancheDef> avalanche;  // the thesis scene; else explicit walls/particles
+  PreparationDef preparation;
+  RestDef rest;
+  OutputDef output;
+  std::vector<WallDef> walls;
+  std::vector<ParticleDef> particles;
+};
+
+}  // namespace runout

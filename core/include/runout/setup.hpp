@@ -1,0 +1,48 @@
+// From a scene definition to a ready World: derived parameters (SPEC §3), the thesis geometry
+// and disc counts (SPEC §5, table 3.1), random pile placement, radius growth and settling.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "runout/measure.hpp"
+#include "runout/scene.hpp"
+#include "runout/world.hpp"
+
+namespace runout {
+
+struct SceneSetup {
+  ContactTable table;
+  double tau_min = 0;        // s
+  double dt = 0;             // s
+  double unit_length = 0;    // d, m
+  double unit_time = 0;      // sqrt(d/g), s
+  double large_diameter = 0; // D, m
+  SpeciesRoles roles;
+  std::vector<WallDef> walls;  // the scene's walls, thesis walls included
+  int gate_wall = -1;          // index in walls of gate "A", or -1
+  std::vector<int> counts;     // discs per species
+};
+
+// Every derived quantity of a scene. Throws ConfigError for scenes that cannot be built.
+SceneSetup derive_setup(const SceneDef& scene);
+StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads);
+
+// SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1).
+int disc_count(double area_share, int reference_large_count, double large_diameter,
+               double diameter);
+
+// A world holding the scene's explicit particles and walls.
+World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int threads);
+
+// The thesis pile (SPEC §5, fig. 3.1): centres at random in the box behind the gate, radii near
+// zero and random velocities; then radii grow exponentially to their final values and the pile
+// settles until its kinetic energy has gone. `progress` is called every t* unit with
+// (t*, E_k/E_p). Throws NumericalError if it does not settle within settle_max_time.
+World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int threads,
+                         const std::function<void(double, double)>& progress = {});
+
+// Removes gate "A" and sets the clock to t* = 0 (SPEC §5 release).
+void release(World& world, const SceneSetup& setup);
+
+}  // namespace runout

@@ -1,0 +1,97 @@
+// The simulated system and its time step: discs, walls, the contact table and the neighbour
+// lists. A step is a short list of named phases (SPEC §2, eqs. 2.15–2.18):
+//   symplectic Euler:  [rebuild?] -> pair forces -> wall forces -> gather + kick + drift
+//   velocity Verlet:   half kick + drift -> [rebuild?] -> pair forces -> wall forces -> gather + half kick
+// The pair loop is written once (pair_forces.cpp) and takes the normal law as a template
+// argument. Every per-disc sum runs over a fixed list order, so results are bit-identical for
+// any thread count (docs/performance.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "runout/derive.hpp"
+#include "runout/neighbor_list.hpp"
+#include "runout/particles.hpp"
+#include "runout/scene.hpp"
+#include "runout/walls.hpp"
+
+namespace runout {
+
+// Constants of the step, built once (Box2D's b2StepContext habit).
+struct StepSettings {
+  double dt = 0;                     // s
+  Eigen::Vector2d gravity{0, -9.81};  // m/s^2
+  double skin = 0;                   // m
+  IntegratorKind integrator = IntegratorKind::symplectic_euler;
+  NormalModel normal_model = NormalModel::walton_braun;
+  int threads = 1;
+  double unit_time = 1;  // seconds per t*, for messages
+};
+
+// Wall-clock seconds spent in each phase since construction.
+struct StepProfile {
+  double pair_forces = 0, wall_forces = 0, integrate = 0, rebuild = 0;
+  std::int64_t rebuilds = 0;
+};
+
+class World {
+ public:
+  World(Particles particles, std::vector<Segment> segments, ContactTable table,
+        StepSettings settings);
+
+  void step();
+
+  const Particles& particles() const { return particles_; }
+  const std::vector<Segment>& segments() const { return segments_; }
+  const ContactTable& table() const { return table_; }
+  const StepSettings& settings() const { return settings_; }
+  const PairContacts& pairs() const { return pairs_; }
+  const WallContacts& wall_contacts() const { return wall_contacts_; }
+  const StepProfile& profile() const { return profile_; }
+  double time() const { return time_; }            // s since the clock was last set
+  std::int64_t step_count() const { return steps_; }
+
+  void set_threads(int threads) { settings_.threads = std::max(1, threads); }
+  void set_clock(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
+  // Stops a wall from acting (the gate at release, SPEC §5). Its contacts end now.
+  void deactivate_wall(int wall_index);
+  // Changes one disc's size (radius growth during preparation).
+  void resize_disc(std::size_t k, double radius, double mass, double inertia);
+  void set_velocity(std::size_t k, double vx, double vy, double omega);
+  // Restores contact history read from a checkpoint (lists are rebuilt, keys matched).
+  void restore_history(const PairContacts& pairs, const WallContacts& walls);
+
+ private:
+  void rebuild_lists();
+  void compute_forces();
+  template <class Law> void pair_forces();
+  template <class Law> void wall_forces();
+  // Sum of contact forces on disc k plus gravity, as accelerations.
+  void acceleration(std::size_t k, double& ax, double& ay, double& alpha) const;
+  void integrate_symplectic_euler();
+  void verlet_half_kick_and_drift();
+  void verlet_half_kick();
+  void check_finite() const;
+
+  Particles particles_;
+  std::vector<Segment> segments_;
+  ContactTable table_;
+  StepSettings settings_;
+  NeighborSearch search_;
+  PairContacts pairs_;
+  WallContacts wall_contacts_;
+  StepProfile profile_;
+  double time_ = 0;
+  std::int64_t steps_ = 0;
+
+  // Verlet-list validity (SPEC §5): rebuild once displacement + growth reaches skin / 2.
+  std::vector<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
+  double max_displacement2_ = 0;
+  double max_growth_ = 0;
+  bool lists_valid_ = false;
+  bool finite_ = true;
+};
+
+}  // namespace runout

@@ -1,0 +1,186 @@
+#include "runout/neighbor_list.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace runout {
+
+namespace {
+
+// Contiguous block of [0, n) for thread t of T: concatenating blocks in thread order gives the
+// same list for any thread count.
+inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T) {
+  return {static_cast<std::int32_t>(std::int64_t(n) * t / T),
+          static_cast<std::int32_t>(std::int64_t(n) * (t + 1) / T)};
+}
+
+// Copies the history of pairs listed before into the new list. Both lists are sorted by
+// (first, second) within a row; rows are per first index.
+template <class Key>
+void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_second,
+                   const std::vector<double>& old_overlap_max,
+                   const std::vector<double>& old_spring, const std::vector<std::int32_t>& row,
+                   const Key& second, std::vector<double>& overlap_max,
+                   std::vector<double>& spring, std::int32_t rows, int threads) {
+  const bool had_old = old_row.size() == row.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int32_t k = 0; k < rows; ++k) {
+    std::int32_t a = had_old ? old_row[k] : 0;
+    const std::int32_t a_end = had_old ? old_row[k + 1] : 0;
+    for (std::int32_t p = row[k]; p < row[k + 1]; ++p) {
+      while (a < a_end && old_second[a] < second[p]) ++a;
+      const bool found = a < a_end && old_second[a] == second[p];
+      overlap_max[p] = found ? old_overlap_max[a] : 0.0;
+      spring[p] = found ? old_spring[a] : 0.0;
+    }
+  }
+}
+
+}  // namespace
+
+void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& segments,
+                             double skin, int threads, PairContacts& pairs,
+                             WallContacts& walls) {
+  const auto n = static_cast<std::int32_t>(p.size());
+  threads = std::max(1, threads);
+
+  std::swap(old_pairs_, pairs);
+  std::swap(old_walls_, walls);
+  pairs.row_start.assign(static_cast<size_t>(n) + 1, 0);
+  walls.row_start.assign(static_cast<size_t>(n) + 1, 0);
+  pairs.i.clear(); pairs.j.clear();
+  walls.disc.clear(); walls.segment.clear();
+
+  if (n > 0) {
+    // ---- cell grid ----
+    double xmin = p.x[0], xmax = p.x[0], ymin = p.y[0], ymax = p.y[0];
+    double rmin = p.radius[0], rmax = p.radius[0];
+    for (std::int32_t k = 1; k < n; ++k) {
+      xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]);
+      ymin = std::min(ymin, p.y[k]); ymax = std::max(ymax, p.y[k]);
+      rmin = std::min(rmin, p.radius[k]); rmax = std::max(rmax, p.radius[k]);
+    }
+    // Cells sized for the small discs; large discs search a wider stencil, so bidisperse piles
+    // with D/d = 8 do not put hundreds of small discs in one cell.
+    double cell = std::max({2 * rmin + skin, (2 * rmax + skin) / 3.0, 1e-12});
+    auto cells_along = [&](double lo, double hi) {
+      return static_cast<std::int64_t>(std::floor((hi - lo) / cell)) + 1;
+    };
+    const std::int64_t max_cells = 4 * std::int64_t(n) + 1024;  // a stray disc must not blow memory
+    while (cells_along(xmin, xmax) * cells_along(ymin, ymax) > max_cells) cell *= 1.5;
+    const auto ncx = static_cast<std::int32_t>(cells_along(xmin, xmax));
+    const auto ncy = static_cast<std::int32_t>(cells_along(ymin, ymax));
+    const double inv_cell = 1.0 / cell;
+
+    disc_cell_.resize(n);
+    cell_start_.assign(static_cast<size_t>(ncx) * ncy + 1, 0);
+    for (std::int32_t k = 0; k < n; ++k) {
+      const auto cx = std::min(ncx - 1, static_cast<std::int32_t>((p.x[k] - xmin) * inv_cell));
+      const auto cy = std::min(ncy - 1, static_cast<std::int32_t>((p.y[k] - ymin) * inv_cell));
+      disc_cell_[k] = cy * ncx + cx;
+      ++cell_start_[disc_cell_[k] + 1];
+    }
+    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+    cell_disc_.resize(n);
+    {
+      std::vector<std::int32_t> cursor(cell_start_.begin(), cell_start_.end() - 1);
+      for (std::int32_t k = 0; k < n; ++k) cell_disc_[cursor[disc_cell_[k]]++] = k;
+    }
+
+    // ---- disc pairs: each thread a contiguous block of i ----
+    thread_i_.resize(threads);
+    thread_j_.resize(threads);
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      const auto [lo, hi] = block(n, t, omp_get_num_threads());
+      auto& out_j = thread_j_[t];
+      out_j.clear();
+      std::vector<std::int32_t> found;
+      for (std::int32_t i = lo; i < hi; ++i) {
+        const double reach = p.radius[i] + rmax + skin;
+        const std::int32_t span = static_cast<std::int32_t>(std::ceil(reach * inv_cell));
+        const std::int32_t ci = disc_cell_[i] % ncx, cj = disc_cell_[i] / ncx;
+        found.clear();
+        for (std::int32_t gy = std::max(0, cj - span); gy <= std::min(ncy - 1, cj + span); ++gy)
+          for (std::int32_t gx = std::max(0, ci - span); gx <= std::min(ncx - 1, ci + span);
+               ++gx) {
+            const std::int32_t c = gy * ncx + gx;
+            for (std::int32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
+              const std::int32_t j = cell_disc_[q];
+              if (j <= i) continue;
+              const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
+              const double cut = p.radius[i] + p.radius[j] + skin;
+              if (dx * dx + dy * dy < cut * cut) found.push_back(j);
+            }
+          }
+        std::sort(found.begin(), found.end());
+        pairs.row_start[i + 1] = static_cast<std::int32_t>(found.size());
+        out_j.insert(out_j.end(), found.begin(), found.end());
+      }
+    }
+    std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
+    const auto np = pairs.row_start[n];
+    pairs.i.resize(np);
+    pairs.j.resize(np);
+    {
+      std::int32_t at = 0;
+      for (int t = 0; t < threads; ++t) {
+        std::copy(thread_j_[t].begin(), thread_j_[t].end(), pairs.j.begin() + at);
+        at += static_cast<std::int32_t>(thread_j_[t].size());
+      }
+      for (std::int32_t i = 0; i < n; ++i)
+        std::fill(pairs.i.begin() + pairs.row_start[i], pairs.i.begin() + pairs.row_start[i + 1],
+                  i);
+    }
+
+    // ---- disc–wall pairs ----
+    const auto ns = static_cast<std::int32_t>(segments.size());
+    for (std::int32_t k = 0; k < n; ++k) {
+      const Eigen::Vector2d c(p.x[k], p.y[k]);
+      for (std::int32_t s = 0; s < ns; ++s) {
+        if (segments[s].active && distance_to(segments[s], c) < p.radius[k] + skin) {
+          walls.disc.push_back(k);
+          walls.segment.push_back(s);
+          ++walls.row_start[k + 1];
+        }
+      }
+    }
+    std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
+  }
+
+  // ---- history and per-step buffers ----
+  const size_t np = pairs.i.size();
+  pairs.overlap_max.resize(np); pairs.tangential_spring.resize(np);
+  pairs.fx.assign(np, 0); pairs.fy.assign(np, 0); pairs.ft.assign(np, 0);
+  carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.overlap_max,
+                old_pairs_.tangential_spring, pairs.row_start, pairs.j, pairs.overlap_max,
+                pairs.tangential_spring, n, threads);
+  const size_t nw = walls.disc.size();
+  walls.overlap_max.resize(nw); walls.tangential_spring.resize(nw);
+  walls.fx.assign(nw, 0); walls.fy.assign(nw, 0); walls.ft.assign(nw, 0);
+  carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.overlap_max,
+                old_walls_.tangential_spring, walls.row_start, walls.segment, walls.overlap_max,
+                walls.tangential_spring, n, threads);
+
+  // ---- gather index: own row first (side 0), then pairs where the disc is j (side 1) ----
+  pairs.gather_start.assign(static_cast<size_t>(n) + 1, 0);
+  for (size_t q = 0; q < np; ++q) {
+    ++pairs.gather_start[pairs.i[q] + 1];
+    ++pairs.gather_start[pairs.j[q] + 1];
+  }
+  std::partial_sum(pairs.gather_start.begin(), pairs.gather_start.end(),
+                   pairs.gather_start.begin());
+  pairs.gather.resize(2 * np);
+  std::vector<std::int32_t> cursor(pairs.gather_start.begin(), pairs.gather_start.end() - 1);
+  for (std::int32_t k = 0; k < n; ++k)
+    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q)
+      pairs.gather[cursor[k]++] = 2 * q;
+  for (size_t q = 0; q < np; ++q)
+    pairs.gather[cursor[pairs.j[q]]++] = static_cast<std::int32_t>(2 * q + 1);
+}
+
+}  // namespace runout

@@ -1,0 +1,203 @@
+#include "runout/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "runout/errors.hpp"
+
+namespace runout {
+
+namespace {
+
+// Portable uniform doubles in [0, 1) from a fixed generator: same pile on every platform.
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : engine_(seed) {}
+  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+constexpr double kDeg = kPi / 180.0;
+
+}  // namespace
+
+int disc_count(double area_share, int reference_large_count, double large_diameter,
+               double diameter) {
+  const double ratio = large_diameter / diameter;
+  const double n = area_share * reference_large_count * ratio * ratio;
+  return static_cast<int>(std::ceil(n * (1.0 - 1e-9)));  // 3200.0000000001 is 3200
+}
+
+SceneSetup derive_setup(const SceneDef& scene) {
+  if (scene.species.empty()) throw ConfigError("scene", "species", "at least one species is required");
+  SceneSetup s;
+  s.table = derive_contact_table(scene.material, scene.contact, scene.species,
+                                 scene.integration.gravity);
+  s.tau_min = minimum_collision_period(s.table, scene.species, scene.material.density,
+                                       scene.contact.normal_model);
+  s.dt = scene.integration.dt_fraction * s.tau_min;
+  s.unit_length = unit_length(scene.species);
+  s.unit_time = unit_time(scene.species, scene.integration.gravity);
+  for (int k = 0; k < static_cast<int>(scene.species.size()); ++k) {
+    if (scene.species[k].diameter <= scene.species[s.roles.small].diameter) s.roles.small = k;
+    if (scene.species[k].diameter > scene.species[s.roles.large].diameter) s.roles.large = k;
+  }
+  s.large_diameter = scene.species[s.roles.large].diameter;
+  s.walls = scene.walls;
+
+  if (scene.avalanche) {
+    const auto& a = *scene.avalanche;
+    s.counts.resize(scene.species.size());
+    for (size_t k = 0; k < scene.species.size(); ++k)
+      s.counts[k] = disc_count(scene.species[k].area_share, a.reference_large_count,
+                               s.large_diameter, scene.species[k].diameter);
+    // The species counted for roles must be present: %A_p = 0 has no small discs.
+    if (s.counts[s.roles.small] == 0) s.roles.small = s.roles.large;
+    if (s.counts[s.roles.large] == 0) s.roles.large = s.roles.small;
+
+    const double D = s.large_diameter, t = std::tan(a.incline_angle_deg * kDeg);
+    const double gate_x = -a.incline_length * D * std::cos(a.incline_angle_deg * kDeg);
+    const double back_x = gate_x - a.pile_width * D;
+    const double floor_end = a.floor_length * D;
+    const double h = a.wall_height * D;
+    // The bed: incline from the back wall's foot to the foot at (0, 0), then the floor.
+    s.walls.push_back({"bed", {{back_x, -back_x * t}, {0.0, 0.0}, {floor_end, 0.0}}, true});
+    s.walls.push_back({"back_wall", {{back_x, -back_x * t + h}, {back_x, -back_x * t}}, false});
+    s.gate_wall = static_cast<int>(s.walls.size());
+    s.walls.push_back({"gate", {{gate_x, -gate_x * t}, {gate_x, -gate_x * t + h}}, false});
+    s.walls.push_back({"end_wall", {{floor_end, 0.0}, {floor_end, h}}, false});
+  } else {
+    s.counts.assign(scene.species.size(), 0);
+    for (const auto& p : scene.particles) ++s.counts[p.species];
+  }
+  return s;
+}
+
+StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads) {
+  StepSettings st;
+  st.dt = setup.dt;
+  st.gravity = {0.0, -scene.integration.gravity};
+  st.skin = scene.integration.skin * setup.unit_length;
+  st.integrator = scene.integration.integrator;
+  st.normal_model = scene.contact.normal_model;
+  st.threads = threads;
+  st.unit_time = setup.unit_time;
+  return st;
+}
+
+World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int threads) {
+  Particles p;
+  std::int64_t id = 1;
+  for (const auto& d : scene.particles) {
+    const double r = 0.5 * d.diameter;
+    const double m = sphere_mass(r, scene.material.density);
+    p.add(id++, d.species, d.x, d.y, r, m, sphere_inertia(m, r), d.vx, d.vy, d.omega);
+  }
+  return World(std::move(p), make_segments(setup.walls), setup.table,
+               step_settings(scene, setup, threads));
+}
+
+World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int threads,
+                         const std::function<void(double, double)>& progress) {
+  const auto& a = *scene.avalanche;
+  const auto& prep = scene.preparation;
+  Random rng(prep.seed);
+  const double D = setup.large_diameter, t = std::tan(a.incline_angle_deg * kDeg);
+  const double gate_x = -a.incline_length * D * std::cos(a.incline_angle_deg * kDeg);
+  const double back_x = gate_x - a.pile_width * D;
+
+  // Final diameters, species by species, largest first (a fixed order for a fixed seed).
+  std::vector<int> order(scene.species.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int l, int r) {
+    return scene.species[l].diameter > scene.species[r].diameter;
+  });
+  std::vector<double> final_radius;
+  std::vector<int> species;
+  double area = 0;
+  for (int k : order) {
+    const auto& sp = scene.species[k];
+    for (int c = 0; c < setup.counts[k]; ++c) {
+      const double dia = sp.diameter * rng.uniform(1.0 - sp.spread, 1.0 + sp.spread);
+      final_radius.push_back(0.5 * dia);
+      species.push_back(k);
+      area += kPi * 0.25 * dia * dia;
+    }
+  }
+  // Box above the incline between back wall and gate, of area (disc area / initial packing).
+  const double width = gate_x - back_x;
+  const double incline_integral = t * (gate_x * gate_x - back_x * back_x) / 2.0;  // < 0
+  const double y_top = (area / prep.initial_packing - incline_integral) / width;
+
+  const double speed = prep.initial_speed * std::sqrt(scene.integration.gravity * setup.unit_length);
+  const double seed_fraction = 1e-3;  // radii start near zero
+  Particles p;
+  for (size_t k = 0; k < final_radius.size(); ++k) {
+    const double rf = final_radius[k];
+    double x = 0, y = 0;
+    for (int tries = 0;; ++tries) {  // uniform in the box, one final radius clear of its walls
+      x = rng.uniform(back_x + rf, gate_x - rf);
+      y = rng.uniform(-gate_x * t, y_top);
+      const double above_incline = (y + x * t) * std::cos(a.incline_angle_deg * kDeg);
+      if (above_incline > rf) break;
+      if (tries > 1000) throw ConfigError("scene", "avalanche.pile_width", "pile box too narrow for its discs");
+    }
+    const double r = seed_fraction * rf;
+    const double m = sphere_mass(r, scene.material.density);
+    p.add(static_cast<std::int64_t>(k + 1), species[k], x, y, r, m, sphere_inertia(m, r),
+          rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0);
+  }
+  World world(std::move(p), make_segments(setup.walls), setup.table,
+              step_settings(scene, setup, threads));
+
+  // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4.
+  const double unit_time = setup.unit_time;
+  const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(unit_time / setup.dt));
+  bool growing = true;
+  double below_since = -1;
+  const double gravity = scene.integration.gravity;
+  for (std::int64_t step = 0;; ++step) {
+    const double t_star = world.time() / unit_time;
+    if (growing) {
+      const double shortfall = (1.0 - seed_fraction) * std::exp(-t_star / prep.growth_time);
+      growing = shortfall > 1e-4;
+      const double scale = growing ? 1.0 - shortfall : 1.0;
+      for (size_t k = 0; k < final_radius.size(); ++k) {
+        const double r = scale * final_radius[k];
+        const double m = sphere_mass(r, scene.material.density);
+        world.resize_disc(k, r, m, sphere_inertia(m, r));
+      }
+    }
+    world.step();
+    if (step % std::max<std::int64_t>(1, steps_per_unit / 10) == 0) {
+      const auto& pp = world.particles();
+      const double ratio = translational_energy(pp) / potential_energy(pp, gravity);
+      if (progress && step % steps_per_unit == 0) progress(t_star, ratio);
+      if (!growing && ratio < prep.settle_ek_threshold) {
+        if (below_since < 0) below_since = t_star;
+        if (t_star - below_since >= prep.settle_hold) break;
+      } else {
+        below_since = -1;
+      }
+      if (t_star > prep.settle_max_time) {
+        std::ostringstream msg;
+        msg << "the pile did not settle by t* = " << prep.settle_max_time << " (E_k/E_p = " << ratio
+            << "); raise preparation.settle_max_time or preparation.settle_ek_threshold";
+        throw NumericalError(msg.str());
+      }
+    }
+  }
+  return world;
+}
+
+void release(World& world, const SceneSetup& setup) {
+  if (setup.gate_wall >= 0) world.deactivate_wall(setup.gate_wall);
+  world.set_clock(0.0, 0);
+}
+
+}  // namespace runout
