@@ -47,6 +47,7 @@ SceneSetup derive_setup(const SceneDef& scene) {
     if (scene.species[k].diameter <= scene.species[s.roles.small].diameter) s.roles.small = k;
     if (scene.species[k].diameter > scene.species[s.roles.large].diameter) s.roles.large = k;
   }
+  s.largest_species = s.roles.large;
   s.large_diameter = scene.species[s.roles.large].diameter;
   s.walls = scene.walls;
 
@@ -147,9 +148,11 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
       if (above_incline > rf) break;
       if (tries > 1000) throw ConfigError("scene", "avalanche.pile_width", "pile box too narrow for its discs");
     }
-    const double r = seed_fraction * rf;
-    const double m = sphere_mass(r, scene.material.density);
-    p.add(static_cast<std::int64_t>(k + 1), species[k], x, y, r, m, sphere_inertia(m, r),
+    // Mass and inertia are the final ones from the start: a tiny disc with the nominal
+    // stiffness would need a far smaller time step.
+    const double m = sphere_mass(rf, scene.material.density);
+    p.add(static_cast<std::int64_t>(k + 1), species[k], x, y, seed_fraction * rf, m,
+          sphere_inertia(m, rf),
           rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0);
   }
   World world(std::move(p), make_segments(setup.walls), setup.table,
@@ -168,16 +171,16 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
       growing = shortfall > 1e-4;
       const double scale = growing ? 1.0 - shortfall : 1.0;
       for (size_t k = 0; k < final_radius.size(); ++k) {
-        const double r = scale * final_radius[k];
-        const double m = sphere_mass(r, scene.material.density);
-        world.resize_disc(k, r, m, sphere_inertia(m, r));
+        const double m = sphere_mass(final_radius[k], scene.material.density);
+        world.resize_disc(k, scale * final_radius[k], m, sphere_inertia(m, final_radius[k]));
       }
     }
     world.step();
     if (step % std::max<std::int64_t>(1, steps_per_unit / 10) == 0) {
       const auto& pp = world.particles();
       const double ratio = translational_energy(pp) / potential_energy(pp, gravity);
-      if (progress && step % steps_per_unit == 0) progress(t_star, ratio);
+      if (progress && step % (10 * std::max<std::int64_t>(1, steps_per_unit / 10)) == 0)
+        progress(t_star, ratio);
       if (!growing && ratio < prep.settle_ek_threshold) {
         if (below_since < 0) below_since = t_star;
         if (t_star - below_since >= prep.settle_hold) break;

@@ -43,6 +43,11 @@ void World::deactivate_wall(int wall_index) {
   lists_valid_ = false;
 }
 
+void World::deactivate_wall_segment(std::size_t segment) {
+  segments_.at(segment).active = false;
+  lists_valid_ = false;
+}
+
 void World::resize_disc(std::size_t k, double radius, double mass, double inertia) {
   auto& p = particles_;
   p.radius[k] = radius;

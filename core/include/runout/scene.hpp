@@ -78,8 +78,8 @@ struct PreparationDef {
 };
 
 struct RestDef {
-  double ek_threshold = 1e-6;  // at rest when E_k/Ep0 < this ...
-  double hold = 2.0;           // ... continuously for this long (t*)
+  double ek_threshold = 1e-5;  // at rest when E_k/Ep0 < this ...
+  double hold = 5.0;           // ... continuously for this long (t*)
   double max_time = 2000.0;    // t*; not at rest by then ends the run as not at rest
 };
 

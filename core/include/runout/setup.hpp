@@ -18,7 +18,8 @@ struct SceneSetup {
   double unit_length = 0;    // d, m
   double unit_time = 0;      // sqrt(d/g), s
   double large_diameter = 0; // D, m
-  SpeciesRoles roles;
+  SpeciesRoles roles;         // small and large among the species present
+  int largest_species = 0;   // by nominal diameter, present or not
   std::vector<WallDef> walls;  // the scene's walls, thesis walls included
   int gate_wall = -1;          // index in walls of gate "A", or -1
   std::vector<int> counts;     // discs per species

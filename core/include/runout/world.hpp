@@ -57,6 +57,7 @@ class World {
   void set_clock(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
   // Stops a wall from acting (the gate at release, SPEC §5). Its contacts end now.
   void deactivate_wall(int wall_index);
+  void deactivate_wall_segment(std::size_t segment);
   // Changes one disc's size (radius growth during preparation).
   void resize_disc(std::size_t k, double radius, double mass, double inertia);
   void set_velocity(std::size_t k, double vx, double vy, double omega);

@@ -1,0 +1,270 @@
+#include "run_command.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+
+#include "runout/checkpoint.hpp"
+#include "runout/errors.hpp"
+#include "runout/io/files.hpp"
+#include "runout/io/outputs.hpp"
+#include "runout/io/scene_file.hpp"
+#include "runout/run.hpp"
+#include "runout/setup.hpp"
+
+namespace runout::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::vector<io::Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<io::Override> out;
+  for (const auto& t : texts) out.push_back(io::parse_override(t));
+  return out;
+}
+
+SceneDef load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                    const std::string& embedded, const std::string& embedded_name) {
+  const auto o = parse_overrides(overrides);
+  return path.empty() ? io::read_scene(embedded, embedded_name, o) : io::read_scene_file(path, o);
+}
+
+std::string default_cache_dir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/runout";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/runout";
+  return ".runout-cache";
+}
+
+std::string hex(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+// Key of a run's physics: the scene without its stopping and output settings, so a run can be
+// resumed with a later max_time but never under other physics.
+std::uint64_t run_key(const SceneDef& scene) {
+  SceneDef s = scene;
+  s.rest = RestDef{};
+  s.output = OutputDef{};
+  s.name.clear();
+  return io::fnv1a64(io::write_scene(s));
+}
+
+std::uint64_t pile_key(const SceneDef& scene) {
+  return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion));
+}
+
+void check_explicit_scene(const SceneDef& scene, const std::string& source) {
+  std::set<std::pair<double, double>> centres;
+  for (std::size_t k = 0; k < scene.particles.size(); ++k) {
+    const auto& p = scene.particles[k];
+    if (!centres.insert({p.x, p.y}).second)
+      throw ConfigError(source, "particles[" + std::to_string(k) + "]",
+                        "has the same centre as an earlier particle: coincident centres have no "
+                        "contact normal; move one of them");
+  }
+}
+
+struct PreparedWorld {
+  World world;
+  bool from_cache = false;
+  double seconds = 0;
+};
+
+PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int threads,
+                      const std::string& cache_dir, bool use_cache, bool quiet) {
+  const auto t0 = Clock::now();
+  World world = build_explicit_world(scene, setup, threads);
+  if (!scene.avalanche) return {std::move(world), false, 0.0};
+
+  const std::uint64_t key = pile_key(scene);
+  const std::string path = cache_dir + "/pile-" + hex(key) + ".ckpt";
+  if (use_cache && io::file_exists(path)) {
+    try {
+      decode_checkpoint(io::read_file(path), key, world, path);
+      if (!quiet) std::fprintf(stderr, "runout: settled pile from cache %s\n", path.c_str());
+      release(world, setup);
+      return {std::move(world), true, std::chrono::duration<double>(Clock::now() - t0).count()};
+    } catch (const IoError& e) {
+      std::fprintf(stderr, "runout: warning: ignoring cached pile (%s); settling afresh\n", e.what());
+    }
+  }
+  if (!quiet)
+    std::fprintf(stderr, "runout: settling the pile (%d discs)\n",
+                 [&] { int n = 0; for (int c : setup.counts) n += c; return n; }());
+  auto progress = [quiet](double t_star, double ratio) {
+    if (!quiet) std::fprintf(stderr, "  settling t* = %7.2f  E_k/E_p = %.3e\n", t_star, ratio);
+  };
+  world = build_settled_pile(scene, setup, threads, progress);
+  if (use_cache) {
+    try {
+      io::make_directories(cache_dir);
+      io::write_file_atomically(path, encode_checkpoint(world, key, {}));
+    } catch (const IoError& e) {
+      std::fprintf(stderr, "runout: warning: could not cache the settled pile: %s\n", e.what());
+    }
+  }
+  release(world, setup);
+  return {std::move(world), false, std::chrono::duration<double>(Clock::now() - t0).count()};
+}
+
+// Writes OUT/checkpoint.bin (atomically) at its schedule.
+class CheckpointWriter : public Observer {
+ public:
+  CheckpointWriter(std::string path, std::uint64_t key, const AvalancheRun*& run)
+      : path_(std::move(path)), key_(key), run_(run) {}
+  void observe(const World& world, double t_star) override {
+    if (t_star <= 0) return;
+    io::write_file_atomically(path_, encode_checkpoint(world, key_, encode_run_state(run_->state())));
+  }
+
+ private:
+  std::string path_;
+  std::uint64_t key_;
+  const AvalancheRun*& run_;
+};
+
+// LAMMPS dump frames, one file each: OUT/dump/frame.<step>.lammpstrj (OVITO reads the sequence).
+class DumpWriter : public Observer {
+ public:
+  explicit DumpWriter(std::string dir) : dir_(std::move(dir)) { io::make_directories(dir_); }
+  void observe(const World& world, double t_star) override {
+    char name[64];
+    std::snprintf(name, sizeof name, "/frame.%09lld.lammpstrj", static_cast<long long>(world.step_count()));
+    io::write_file_atomically(dir_ + name, io::lammps_dump_frame(world, t_star));
+  }
+
+ private:
+  std::string dir_;
+};
+
+int resolve_threads(int threads) { return threads > 0 ? threads : std::max(1, omp_get_num_procs()); }
+
+}  // namespace
+
+int run_command(const RunOptions& o) {
+  const std::string source = o.scene_path.empty() ? "<embedded quick scene>" : o.scene_path;
+  SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_quick_scene(), source);
+  if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
+  if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
+  if (!scene.avalanche) check_explicit_scene(scene, source);
+  const SceneSetup setup = derive_setup(scene);
+  const int threads = resolve_threads(o.threads);
+
+  io::make_directories(o.out_dir);
+  io::write_file_atomically(o.out_dir + "/scene.resolved.toml", io::write_scene(scene));
+  // A summary from an earlier run in this folder must not pass for this run's.
+  std::remove((o.out_dir + "/summary.json").c_str());
+
+  const std::string checkpoint_path = o.out_dir + "/checkpoint.bin";
+  const std::uint64_t key = run_key(scene);
+  PreparedWorld prepared{build_explicit_world(scene, setup, threads)};
+  std::optional<RunState> resumed;
+  if (o.resume && io::file_exists(checkpoint_path)) {
+    resumed = decode_run_state(decode_checkpoint(io::read_file(checkpoint_path), key, prepared.world,
+                                                 checkpoint_path),
+                               checkpoint_path);
+    if (!o.quiet)
+      std::fprintf(stderr, "runout: resuming from %s at t* = %.3f\n", checkpoint_path.c_str(),
+                   prepared.world.time() / setup.unit_time);
+  } else {
+    prepared = prepare(scene, setup, threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
+                       !o.no_cache, o.quiet);
+  }
+  World& world = prepared.world;
+
+  AvalancheRun run = resumed ? AvalancheRun(world, scene, setup, *resumed)
+                             : AvalancheRun(world, scene, setup);
+  const AvalancheRun* run_ptr = &run;
+  CheckpointWriter checkpoints(checkpoint_path, key, run_ptr);
+  if (scene.output.checkpoint_every > 0)
+    run.add_observer(checkpoints, {scene.output.checkpoint_every, scene.output.checkpoint_every, {}});
+  std::optional<DumpWriter> dumps;
+  if (scene.output.dump_every > 0) {
+    dumps.emplace(o.out_dir + "/dump");
+    run.add_observer(*dumps, {scene.output.dump_every, 0.0, {}});
+  }
+  if (!o.quiet) {
+    std::fprintf(stderr, "runout: %zu discs, dt = %.3e s (%.0f steps per t*), %d thread%s\n",
+                 world.particles().size(), setup.dt, setup.unit_time / setup.dt, threads,
+                 threads == 1 ? "" : "s");
+    run.set_progress([](double t_star, double ratio, double rate) {
+      std::fprintf(stderr, "  t* = %8.2f  E_k/Ep0 = %.3e  %8.0f steps/s\n", t_star, ratio, rate);
+    });
+  }
+  const RunResult result = run.run();
+
+  io::SummaryContext ctx;
+  ctx.scene_name = scene.name;
+  ctx.scene_source = source;
+  ctx.unit_length = setup.unit_length;
+  ctx.unit_time = setup.unit_time;
+  ctx.tau_min = setup.tau_min;
+  ctx.threads = threads;
+  ctx.seed = scene.preparation.seed;
+  ctx.pile_from_cache = prepared.from_cache;
+  ctx.preparation_seconds = prepared.seconds;
+  for (const auto& sp : scene.species) ctx.species_names.push_back(sp.name);
+
+  io::write_file_atomically(o.out_dir + "/timeseries.csv", io::timeseries_csv(run.state().series));
+  io::write_file_atomically(checkpoint_path, encode_checkpoint(world, key, encode_run_state(run.state())));
+  io::write_file_atomically(o.out_dir + "/summary.json", io::summary_json(result, ctx));
+
+  if (!o.quiet) {
+    std::fprintf(stderr, "runout: %s at t* = %.2f; mu_global = H_cm/L_cm = %.4f; %.3g particle-steps/s\n",
+                 result.at_rest ? "at rest" : "stopped", result.t_star_end, result.mu_global,
+                 result.particle_steps_per_second);
+  }
+  std::printf("mu_global: %.6f\n", result.mu_global);
+  const bool ended_by_time = scene.output.end_time > 0 && result.t_star_end >= scene.output.end_time - 1e-9;
+  if (!result.at_rest && !ended_by_time) {
+    std::fprintf(stderr,
+                 "runout: the mass was not at rest by rest.max_time = %g (t*); summary.json says "
+                 "at_rest = false. Raise rest.max_time or rest.ek_threshold.\n",
+                 scene.rest.max_time);
+    return 3;
+  }
+  return 0;
+}
+
+int bench_command(const BenchOptions& o) {
+  const std::string source = o.scene_path.empty() ? "<embedded bench scene>" : o.scene_path;
+  SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_bench_scene(), source);
+  if (!scene.avalanche) check_explicit_scene(scene, source);
+  const SceneSetup setup = derive_setup(scene);
+  PreparedWorld prepared = prepare(scene, setup, std::max(o.threads, omp_get_num_procs()),
+                                   o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, false);
+  World& world = prepared.world;
+  world.set_threads(o.threads);
+  const long long warmup = o.warmup_steps > 0 ? o.warmup_steps
+                                              : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
+  for (long long s = 0; s < warmup; ++s) world.step();
+  const StepProfile before = world.profile();
+  const auto t0 = Clock::now();
+  for (long long s = 0; s < o.steps; ++s) world.step();
+  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+  const StepProfile& after = world.profile();
+  const double n = static_cast<double>(world.particles().size());
+  std::printf("scene: %s\n", scene.name.c_str());
+  std::printf("discs: %.0f\n", n);
+  std::printf("threads: %d\n", o.threads);
+  std::printf("t_star_start: %.3f\n", (world.time() - secs * 0) / setup.unit_time - o.steps * setup.dt / setup.unit_time);
+  std::printf("steps: %lld\n", o.steps);
+  std::printf("seconds: %.4f\n", secs);
+  std::printf("pairs_listed_per_disc: %.3f\n", world.pairs().size() / n);
+  std::printf("rebuilds: %lld\n", static_cast<long long>(after.rebuilds - before.rebuilds));
+  std::printf("share_pair_forces: %.3f\n", (after.pair_forces - before.pair_forces) / secs);
+  std::printf("share_wall_forces: %.3f\n", (after.wall_forces - before.wall_forces) / secs);
+  std::printf("share_integrate: %.3f\n", (after.integrate - before.integrate) / secs);
+  std::printf("share_rebuild: %.3f\n", (after.rebuild - before.rebuild) / secs);
+  std::printf("particle_steps_per_second: %.0f\n", n * o.steps / secs);
+  return 0;
+}
+
+}  // namespace runout::app

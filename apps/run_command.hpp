@@ -1,0 +1,35 @@
+// `runout run` and `runout bench`: the glue between the command line, the scene file, the
+// core's run loop and the files a run writes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace runout::app {
+
+struct RunOptions {
+  std::string scene_path;  // empty: the embedded quick pile
+  std::string out_dir;
+  std::vector<std::string> overrides;
+  int threads = 0;  // 0: all cores
+  long long seed = -1;
+  double dump_every = -1;  // < 0: from the scene
+  bool resume = false;
+  std::string cache_dir;   // empty: $XDG_CACHE_HOME/runout or ~/.cache/runout
+  bool no_cache = false;
+  bool quiet = false;
+};
+
+struct BenchOptions {
+  std::string scene_path;  // empty: the embedded bench scene (D/d = 4, %A_p = 40)
+  long long steps = 20000;
+  long long warmup_steps = 0;  // 0: run to t* = 5 after release first
+  int threads = 1;
+  std::string cache_dir;
+  std::vector<std::string> overrides;
+};
+
+int run_command(const RunOptions& o);    // returns the process exit code
+int bench_command(const BenchOptions& o);
+
+}  // namespace runout::app

@@ -1,0 +1,56 @@
+// runout: 2D soft-disc DEM of bidisperse granular avalanches (SPEC.md). Command line.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "run_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App cli{"runout: 2D discrete-element simulation of granular avalanches"};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", "runout 0.1.0");
+
+  runout::app::RunOptions run;
+  auto* run_cmd = cli.add_subcommand("run", "simulate a scene until the mass is at rest");
+  run_cmd->add_option("scene", run.scene_path, "scene file (TOML); default: the embedded quick pile")
+      ->check(CLI::ExistingFile);
+  run_cmd->add_option("--out,-o", run.out_dir, "output folder")->required();
+  run_cmd->add_option("--set", run.overrides, "override a scene key, e.g. --set contact.normal_model=hertz")
+      ->take_all()->allow_extra_args(false);
+  run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  run_cmd->add_option("--seed", run.seed, "preparation seed (overrides preparation.seed)")
+      ->check(CLI::Range(0LL, 9000000000000000000LL));
+  run_cmd->add_option("--dump-every", run.dump_every,
+                      "write LAMMPS dump frames every DT_STAR (0: off; default: output.dump_every)")
+      ->check(CLI::Range(0.0, 1e7));
+  run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin if present");
+  run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
+  run_cmd->add_flag("--no-cache", run.no_cache, "always settle the pile afresh");
+  run_cmd->add_flag("--quiet,-q", run.quiet, "no progress on stderr");
+
+  runout::app::BenchOptions bench;
+  auto* bench_cmd = cli.add_subcommand("bench", "measure particle-steps per second on a flowing pile");
+  bench_cmd->add_option("--scene", bench.scene_path, "scene (default: thesis D/d = 4, %A_p = 40)")
+      ->check(CLI::ExistingFile);
+  bench_cmd->add_option("--steps", bench.steps, "timed steps")->check(CLI::Range(1LL, 100000000LL));
+  bench_cmd->add_option("--warmup-steps", bench.warmup_steps, "steps after release before timing (default: to t* = 5)")
+      ->check(CLI::Range(0LL, 100000000LL));
+  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
+  bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (*run_cmd) return runout::app::run_command(run);
+    if (*bench_cmd) return runout::app::bench_command(bench);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "runout: error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,82 @@
+// Checkpoints: the dynamic state of a World (discs, clock, removed walls, contact history) plus
+// an opaque blob for the caller's run state, in a versioned little-endian binary with an FNV-1a
+// checksum. The static parts (walls, coefficients) come from the scene, whose key is stored and
+// checked so a checkpoint is never resumed under another scene.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+#include <string>
+#include <string_view>
+
+#include "runout/world.hpp"
+
+namespace runout {
+
+inline constexpr std::uint32_t kCheckpointVersion = 1;
+
+std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
+                              std::string_view run_state);
+
+// Restores `world` (built from the same scene) and returns the run-state blob. Throws IoError
+// for a corrupt, truncated, foreign or other-version file and for a scene-key mismatch.
+std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
+                              const std::string& name);
+
+// Little helpers to pack plain values and vectors (used for run states too).
+class ByteWriter {
+ public:
+  template <class T> void put(const T& v) {
+    out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  template <class T> void put_vector(const std::vector<T>& v) {
+    put<std::uint64_t>(v.size());
+    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put_string(std::string_view s) {
+    put<std::uint64_t>(s.size());
+    out_.append(s);
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class ByteReader {
+ public:
+  ByteReader(std::string_view in, std::string name) : in_(in), name_(std::move(name)) {}
+  template <class T> T get() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, in_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  template <class T> std::vector<T> get_vector() {
+    const auto n = get<std::uint64_t>();
+    if (n > (in_.size() - at_) / sizeof(T)) fail();
+    std::vector<T> v(n);
+    std::memcpy(v.data(), in_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+    return v;
+  }
+  std::string get_string() {
+    const auto n = get<std::uint64_t>();
+    need(n);
+    std::string s(in_.substr(at_, n));
+    at_ += n;
+    return s;
+  }
+  bool done() const { return at_ == in_.size(); }
+
+ private:
+  void need(std::size_t n) { if (n > in_.size() - at_) fail(); }
+  [[noreturn]] void fail();
+  std::string_view in_;
+  std::size_t at_ = 0;
+  std::string name_;
+};
+
+}  // namespace runout

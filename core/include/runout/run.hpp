@@ -1,0 +1,117 @@
+// The run: steps a World from release (t* = 0) until the mass is at rest again (a measured
+// criterion, SPEC §5), an end time, or the time limit; samples the time series of SPEC §6;
+// calls observers at chosen t*; and reports the study's measurements.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "runout/measure.hpp"
+#include "runout/setup.hpp"
+#include "runout/world.hpp"
+
+namespace runout {
+
+struct TimeseriesRow {
+  double t_star = 0;
+  double ek_over_ep0 = 0;     // translational, eq. 4.5
+  double erot_over_ep0 = 0;
+  double x_cm = 0, y_cm = 0;  // in d
+  double small_mean_height = 0, large_mean_height = 0;  // in d, above the bed
+  double basal_spin = 0;      // omega sqrt(d/g) of small discs touching the bed
+  double front_x = 0;         // farthest disc edge, in d
+};
+
+// Something that wants to see the world at chosen times: frame sinks, dumps, checkpoints.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void observe(const World& world, double t_star) = 0;
+};
+
+// When an observer fires: every `every` t* from `first`, and/or at listed times. It fires on the
+// first step whose t* is within half a step of the requested time (the physics never bends to
+// an observer, so attaching one does not change the results).
+struct Schedule {
+  double every = 0;
+  double first = 0;
+  std::vector<double> at;
+};
+
+struct RunResult {
+  bool at_rest = false;
+  double t_star_rest = std::numeric_limits<double>::quiet_NaN();
+  double t_star_end = 0;
+  std::int64_t steps = 0;
+  double dt = 0;
+  double wall_seconds = 0;
+  double particle_steps_per_second = 0;
+  std::vector<int> counts;  // per species
+  int n_large = 0, n_small = 0;
+  Eigen::Vector2d com_release{0, 0}, com_rest{0, 0};
+  double H_cm = 0, L_cm = 0, mu_global = 0;  // eqs. 4.2–4.4, metres
+  double H_front = 0, L_front = 0, H_over_L_front = 0;
+  double ep0 = 0;
+  double peak_ek_over_ep0 = 0, t_star_peak_ek = 0;
+  BasalLayer basal_layer;
+  double H_layer_over_d = 0, H_layer_over_d_spread = 0;
+  double final_basal_spin = 0;
+  StepProfile profile;
+};
+
+// Everything a run carries between steps; saved in checkpoints so a run resumes exactly.
+struct RunState {
+  double ep0 = 0;
+  double energy_reference_y = 0;
+  Eigen::Vector2d com_release{0, 0};
+  FrontReach top_release;
+  double below_since = -1;  // t* since which E_k/Ep0 has stayed below the threshold
+  double peak_ek = 0, t_star_peak_ek = 0;
+  double next_sample = 0;
+  std::vector<TimeseriesRow> series;
+  double wall_seconds = 0;  // spent before a resume
+};
+std::string encode_run_state(const RunState& s);
+RunState decode_run_state(const std::string& bytes, const std::string& name);
+
+class AvalancheRun {
+ public:
+  // `world` is at t* = 0 (just released, or an explicit scene at its start).
+  AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup);
+  // Continues from a checkpointed state instead.
+  AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup, RunState state);
+
+  void add_observer(Observer& observer, Schedule schedule);
+  // Progress: called about every t* unit with (t*, E_k/Ep0, steps per second).
+  void set_progress(std::function<void(double, double, double)> progress) { progress_ = std::move(progress); }
+  RunResult run();
+
+  const RunState& state() const { return state_; }
+  double t_star() const;
+  TimeseriesRow sample() const;
+
+ private:
+  struct Scheduled {
+    Observer* observer;
+    Schedule schedule;
+    double next_every;
+    std::size_t next_at = 0;
+  };
+  void fire_observers();
+  bool finished();
+  RunResult result(double wall_seconds) const;
+
+  World& world_;
+  const SceneDef& scene_;
+  const SceneSetup& setup_;
+  RunState state_;
+  std::vector<Scheduled> observers_;
+  std::function<void(double, double, double)> progress_;
+  bool at_rest_ = false;
+};
+
+}  // namespace runout

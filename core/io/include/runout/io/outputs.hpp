@@ -1,0 +1,30 @@
+// What a run writes: summary.json, timeseries.csv, LAMMPS `dump custom` frames (OVITO opens
+// them). Pure formatting; writing goes through write_file_atomically.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runout/run.hpp"
+
+namespace runout::io {
+
+struct SummaryContext {
+  std::string scene_name;
+  std::string scene_source;
+  double unit_length = 0;  // d, m
+  double unit_time = 0;    // s per t*
+  double tau_min = 0;
+  int threads = 1;
+  std::uint64_t seed = 0;
+  bool pile_from_cache = false;
+  double preparation_seconds = 0;
+  std::vector<std::string> species_names;
+};
+
+std::string summary_json(const RunResult& r, const SummaryContext& c);
+std::string timeseries_csv(const std::vector<TimeseriesRow>& rows);
+// One frame: ITEM: TIMESTEP ... ITEM: ATOMS id type x y radius vx vy omegaz (type = species + 1).
+std::string lammps_dump_frame(const World& world, double t_star);
+
+}  // namespace runout::io

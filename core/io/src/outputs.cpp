@@ -1,0 +1,121 @@
+#include "runout/io/outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace runout::io {
+
+namespace {
+
+// JSON has no NaN: a quantity that is undefined for this run (no small discs, not at rest) is
+// written as null.
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+}  // namespace
+
+std::string summary_json(const RunResult& r, const SummaryContext& c) {
+  nlohmann::json j;
+  j["scene"] = c.scene_name;
+  j["scene_source"] = c.scene_source;
+  j["mu_global"] = number(r.mu_global);
+  j["H_cm"] = number(r.H_cm);
+  j["L_cm"] = number(r.L_cm);
+  j["H_cm_over_d"] = number(r.H_cm / c.unit_length);
+  j["L_cm_over_d"] = number(r.L_cm / c.unit_length);
+  j["H_over_L_front"] = number(r.H_over_L_front);
+  j["H_front"] = number(r.H_front);
+  j["L_front"] = number(r.L_front);
+  j["com_release"] = {number(r.com_release.x()), number(r.com_release.y())};
+  j["com_rest"] = {number(r.com_rest.x()), number(r.com_rest.y())};
+  j["n_large"] = r.n_large;
+  j["n_small"] = r.n_small;
+  nlohmann::json counts = nlohmann::json::object();
+  for (std::size_t k = 0; k < r.counts.size() && k < c.species_names.size(); ++k)
+    counts[c.species_names[k]] = r.counts[k];
+  j["counts"] = counts;
+  j["at_rest"] = r.at_rest;
+  j["t_star_rest"] = number(r.t_star_rest);
+  j["t_star_end"] = number(r.t_star_end);
+  j["steps"] = r.steps;
+  j["dt"] = r.dt;
+  j["tau_min"] = c.tau_min;
+  j["steps_per_t_star"] = c.unit_time / r.dt;
+  j["unit_length_d"] = c.unit_length;
+  j["unit_time"] = c.unit_time;
+  j["ep0"] = number(r.ep0);
+  j["peak_ek_over_ep0"] = number(r.peak_ek_over_ep0);
+  j["t_star_peak_ek"] = number(r.t_star_peak_ek);
+  j["H_layer_over_d"] = number(r.H_layer_over_d);
+  j["H_layer_over_d_spread"] = number(r.H_layer_over_d_spread);
+  nlohmann::json windows = nlohmann::json::array();
+  for (double t : r.basal_layer.thickness) windows.push_back(number(t / c.unit_length));
+  j["H_layer_over_d_windows"] = windows;  // L1, 3/4 L1, 1/2 L1, 1/4 L1
+  j["deposit_L1"] = number(r.basal_layer.deposit_end - r.basal_layer.deposit_start);
+  j["final_basal_spin"] = number(r.final_basal_spin);
+  j["wall_seconds"] = r.wall_seconds;
+  j["preparation_seconds"] = c.preparation_seconds;
+  j["pile_from_cache"] = c.pile_from_cache;
+  j["particle_steps_per_second"] = r.particle_steps_per_second;
+  j["threads"] = c.threads;
+  j["seed"] = c.seed;
+  j["profile_seconds"] = {{"pair_forces", r.profile.pair_forces},
+                          {"wall_forces", r.profile.wall_forces},
+                          {"integrate", r.profile.integrate},
+                          {"rebuild", r.profile.rebuild},
+                          {"rebuilds", r.profile.rebuilds}};
+  return j.dump(2) + "\n";
+}
+
+std::string timeseries_csv(const std::vector<TimeseriesRow>& rows) {
+  std::string out =
+      "t_star,ek_over_ep0,erot_over_ep0,x_cm,y_cm,small_mean_height,large_mean_height,"
+      "basal_spin,front_x\n";
+  char line[512];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", r.t_star,
+                  r.ek_over_ep0, r.erot_over_ep0, r.x_cm, r.y_cm, r.small_mean_height,
+                  r.large_mean_height, r.basal_spin, r.front_x);
+    out += line;
+  }
+  return out;
+}
+
+std::string lammps_dump_frame(const World& world, double t_star) {
+  const auto& p = world.particles();
+  double xlo = 0, xhi = 0, ylo = 0, yhi = 0;
+  bool first = true;
+  auto grow = [&](double x, double y) {
+    if (first) { xlo = xhi = x; ylo = yhi = y; first = false; }
+    xlo = std::min(xlo, x); xhi = std::max(xhi, x); ylo = std::min(ylo, y); yhi = std::max(yhi, y);
+  };
+  for (const auto& s : world.segments()) { grow(s.a.x(), s.a.y()); grow(s.b.x(), s.b.y()); }
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    grow(p.x[k] - p.radius[k], p.y[k] - p.radius[k]);
+    grow(p.x[k] + p.radius[k], p.y[k] + p.radius[k]);
+  }
+  std::string out;
+  out.reserve(p.size() * 96 + 256);
+  char line[256];
+  std::snprintf(line, sizeof line, "ITEM: TIMESTEP\n%lld\nITEM: TIME\n%.9g\n",
+                static_cast<long long>(world.step_count()), t_star);
+  out += line;
+  std::snprintf(line, sizeof line, "ITEM: NUMBER OF ATOMS\n%zu\n", p.size());
+  out += line;
+  double rmax = 0;
+  for (double r : p.radius) rmax = std::max(rmax, r);
+  std::snprintf(line, sizeof line, "ITEM: BOX BOUNDS ff ff pp\n%.9g %.9g\n%.9g %.9g\n%.9g %.9g\n",
+                xlo, xhi, ylo, yhi, -rmax, rmax);
+  out += line;
+  out += "ITEM: ATOMS id type x y radius vx vy omegaz\n";
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    std::snprintf(line, sizeof line, "%lld %d %.9g %.9g %.9g %.9g %.9g %.9g\n",
+                  static_cast<long long>(p.id[k]), p.species[k] + 1, p.x[k], p.y[k], p.radius[k],
+                  p.vx[k], p.vy[k], p.omega[k]);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace runout::io

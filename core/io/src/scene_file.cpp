@@ -1,0 +1,523 @@
+#include "runout/io/scene_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "runout/errors.hpp"
+#include "runout/io/files.hpp"
+
+namespace runout::io {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// A numeric interval with open or closed ends, printed the way a user reads it: "(0, 1]".
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  bool contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string text() const {
+    auto end = [](double v) { return std::isinf(v) ? std::string(v < 0 ? "-inf" : "inf") : format_number(v); };
+    return std::string(lo_open || std::isinf(lo) ? "(" : "[") + end(lo) + ", " + end(hi) +
+           (hi_open || std::isinf(hi) ? ")" : "]");
+  }
+};
+Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+Range positive(double hi = kInf) { return {0, hi, true, false}; }
+
+// Reads one TOML table into plain structs, remembering which keys it used; finish() rejects the
+// rest. Every error names the file and the full dotted key.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, const std::string& source)
+      : table_(table), path_(std::move(path)), source_(source) {}
+
+  std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
+  [[noreturn]] void fail(const std::string& k, const std::string& what) const {
+    throw ConfigError(source_, key(k), what);
+  }
+  bool has(const std::string& k) const { return table_.contains(k); }
+  const toml::node* node(const std::string& k) {
+    used_.insert(k);
+    return table_.get(k);
+  }
+
+  void number(const std::string& k, double& out, Range range) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_number()) fail(k, "expected a number in " + range.text() + ", got " + type_name(*n));
+    const double v = n->is_integer() ? static_cast<double>(n->as_integer()->get())
+                                     : n->as_floating_point()->get();
+    if (!std::isfinite(v) || !range.contains(v))
+      fail(k, "value " + format_number(v) + " is out of the allowed range " + range.text());
+    out = v;
+  }
+  template <class Int>
+  void integer(const std::string& k, Int& out, double lo, double hi) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    const Range range = closed(lo, hi);
+    if (!n->is_integer()) fail(k, "expected an integer in " + range.text() + ", got " + type_name(*n));
+    const auto v = n->as_integer()->get();
+    if (v < lo || v > hi) fail(k, "value " + std::to_string(v) + " is out of the allowed range " + range.text());
+    out = static_cast<Int>(v);
+  }
+  void boolean(const std::string& k, bool& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_boolean()) fail(k, "expected true or false, got " + type_name(*n));
+    out = n->as_boolean()->get();
+  }
+  void string(const std::string& k, std::string& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_string()) fail(k, "expected a string, got " + type_name(*n));
+    out = n->as_string()->get();
+  }
+  template <class Enum>
+  void choice(const std::string& k, Enum& out,
+              const std::vector<std::pair<std::string, Enum>>& options) {
+    std::string s;
+    const bool present = has(k);
+    string(k, s);
+    if (!present) return;
+    std::string allowed;
+    for (const auto& [name, value] : options) {
+      if (name == s) { out = value; return; }
+      allowed += (allowed.empty() ? "" : ", ") + ("\"" + name + "\"");
+    }
+    fail(k, "\"" + s + "\" is not one of " + allowed);
+  }
+  const toml::table* subtable(const std::string& k) {
+    const toml::node* n = node(k);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(k, "expected a table, got " + type_name(*n));
+    return n->as_table();
+  }
+  const toml::array* array(const std::string& k) {
+    const toml::node* n = node(k);
+    if (!n) return nullptr;
+    if (!n->is_array()) fail(k, "expected an array, got " + type_name(*n));
+    return n->as_array();
+  }
+  void finish() const {
+    for (auto&& [k, v] : table_) {
+      const std::string name(k.str());
+      if (!used_.count(name)) fail(name, "unknown key" + suggestion());
+    }
+  }
+  void allow(std::initializer_list<const char*> keys, std::string hint) {
+    hint_ = std::move(hint);
+    for (auto k : keys) known_.emplace_back(k);
+  }
+
+  static std::string type_name(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a number";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date or time";
+    }
+  }
+
+ private:
+  std::string suggestion() const {
+    if (known_.empty()) return "";
+    std::string s = " (allowed here: ";
+    for (size_t i = 0; i < known_.size(); ++i) s += (i ? ", " : "") + known_[i];
+    return s + ")";
+  }
+  const toml::table& table_;
+  std::string path_;
+  const std::string& source_;
+  std::set<std::string> used_;
+  std::vector<std::string> known_;
+  std::string hint_;
+};
+
+const std::vector<std::pair<std::string, NormalModel>> kNormalModels = {
+    {"walton_braun", NormalModel::walton_braun},
+    {"linear_dashpot", NormalModel::linear_dashpot},
+    {"hertz", NormalModel::hertz}};
+const std::vector<std::pair<std::string, IntegratorKind>> kIntegrators = {
+    {"symplectic_euler", IntegratorKind::symplectic_euler},
+    {"velocity_verlet", IntegratorKind::velocity_verlet}};
+
+// Applies one --set to the parsed document.
+void apply_override(toml::table& root, const Override& o, const std::string& source) {
+  toml::table* t = &root;
+  std::vector<std::string> parts;
+  std::stringstream ss(o.key);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    toml::node* n = t->get(parts[i]);
+    if (!n) {
+      t->insert(parts[i], toml::table{});
+      n = t->get(parts[i]);
+    }
+    if (!n->is_table())
+      throw ConfigError(source, o.key, "--set can only set keys inside tables, and " + parts[i] + " is not a table");
+    t = n->as_table();
+  }
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + o.value);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{};
+    parsed.insert("v", o.value);  // a bare word: the string itself
+  }
+  t->insert_or_assign(parts.back(), *parsed.get("v"));
+}
+
+std::pair<double, double> read_point(const toml::node& n, const std::string& source,
+                                     const std::string& key) {
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
+    throw ConfigError(source, key, "expected a point [x, y] of two numbers");
+  auto num = [](const toml::node& v) {
+    return v.is_integer() ? double(v.as_integer()->get()) : v.as_floating_point()->get();
+  };
+  const double x = num((*a)[0]), y = num((*a)[1]);
+  if (!std::isfinite(x) || !std::isfinite(y)) throw ConfigError(source, key, "coordinates must be finite");
+  return {x, y};
+}
+
+SceneDef read_document(const toml::table& root, const std::string& source) {
+  SceneDef s;
+  TableReader top(root, "", source);
+  top.allow({"name", "material", "contact", "integration", "species", "avalanche", "preparation",
+             "rest", "output", "walls", "particles"}, "");
+  top.string("name", s.name);
+
+  if (auto t = top.subtable("material")) {
+    TableReader r(*t, "material", source);
+    r.allow({"density", "friction", "wall_friction", "restitution", "wall_restitution"}, "");
+    r.number("density", s.material.density, positive());
+    r.number("friction", s.material.friction, closed(0, 100));
+    r.number("wall_friction", s.material.wall_friction, closed(0, 100));
+    r.number("restitution", s.material.restitution, {0, 1, true, false});
+    r.number("wall_restitution", s.material.wall_restitution, {0, 1, true, false});
+    r.finish();
+  }
+  if (auto t = top.subtable("contact")) {
+    TableReader r(*t, "contact", source);
+    r.allow({"normal_model", "design_impact_speed", "design_max_overlap", "stiffness_ratio"}, "");
+    r.choice("normal_model", s.contact.normal_model, kNormalModels);
+    r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
+    r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
+    r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
+    r.finish();
+  }
+  if (auto t = top.subtable("integration")) {
+    TableReader r(*t, "integration", source);
+    r.allow({"integrator", "dt_fraction", "skin", "gravity"}, "");
+    r.choice("integrator", s.integration.integrator, kIntegrators);
+    r.number("dt_fraction", s.integration.dt_fraction, {0, 1, true, false});
+    r.number("skin", s.integration.skin, {0, 10, true, false});
+    r.number("gravity", s.integration.gravity, positive(1e4));
+    r.finish();
+  }
+  if (auto t = top.subtable("species")) {
+    for (auto&& [k, v] : *t) {
+      const std::string name(k.str());
+      if (!v.is_table()) throw ConfigError(source, "species." + name, "expected a table [species." + name + "]");
+      TableReader r(*v.as_table(), "species." + name, source);
+      r.allow({"diameter", "spread", "area_share"}, "");
+      SpeciesDef sp;
+      sp.name = name;
+      if (!r.has("diameter")) r.fail("diameter", "is required (metres, > 0)");
+      r.number("diameter", sp.diameter, positive(1e6));
+      r.number("spread", sp.spread, {0, 1, false, true});
+      r.number("area_share", sp.area_share, closed(0, 1));
+      r.finish();
+      s.species.push_back(sp);
+    }
+  }
+  if (s.species.empty())
+    throw ConfigError(source, "species", "at least one [species.NAME] table with a diameter is required");
+  if (s.species.size() > 64) throw ConfigError(source, "species", "at most 64 species");
+
+  if (auto t = top.subtable("avalanche")) {
+    AvalancheDef a;
+    TableReader r(*t, "avalanche", source);
+    r.allow({"incline_angle", "incline_length", "pile_width", "floor_length", "wall_height",
+             "reference_large_count"}, "");
+    r.number("incline_angle", a.incline_angle_deg, {0, 90, true, true});
+    r.number("incline_length", a.incline_length, {0, 1e5, false, false});
+    r.number("pile_width", a.pile_width, {0, 1e5, true, false});
+    r.number("floor_length", a.floor_length, {0, 1e6, true, false});
+    r.number("wall_height", a.wall_height, {0, 1e6, true, false});
+    r.integer("reference_large_count", a.reference_large_count, 1, 1e6);
+    r.finish();
+    s.avalanche = a;
+    double share = 0;
+    for (const auto& sp : s.species) share += sp.area_share;
+    if (std::abs(share - 1.0) > 1e-9)
+      throw ConfigError(source, "species.*.area_share",
+                        "the area shares of an avalanche's species must add up to 1 (they add up to " +
+                            format_number(share) + ")");
+  }
+  if (auto t = top.subtable("preparation")) {
+    TableReader r(*t, "preparation", source);
+    r.allow({"seed", "initial_packing", "initial_speed", "growth_time", "settle_ek_threshold",
+             "settle_hold", "settle_max_time"}, "");
+    std::int64_t seed = static_cast<std::int64_t>(s.preparation.seed);
+    r.integer("seed", seed, 0, 9.2e18);
+    s.preparation.seed = static_cast<std::uint64_t>(seed);
+    r.number("initial_packing", s.preparation.initial_packing, {0, 0.9, true, false});
+    r.number("initial_speed", s.preparation.initial_speed, closed(0, 100));
+    r.number("growth_time", s.preparation.growth_time, {0, 1e4, true, false});
+    r.number("settle_ek_threshold", s.preparation.settle_ek_threshold, {0, 1, true, false});
+    r.number("settle_hold", s.preparation.settle_hold, closed(0, 1e4));
+    r.number("settle_max_time", s.preparation.settle_max_time, {0, 1e6, true, false});
+    r.finish();
+  }
+  if (auto t = top.subtable("rest")) {
+    TableReader r(*t, "rest", source);
+    r.allow({"ek_threshold", "hold", "max_time"}, "");
+    r.number("ek_threshold", s.rest.ek_threshold, {0, 1, true, false});
+    r.number("hold", s.rest.hold, closed(0, 1e4));
+    r.number("max_time", s.rest.max_time, {0, 1e7, true, false});
+    r.finish();
+  }
+  if (auto t = top.subtable("output")) {
+    TableReader r(*t, "output", source);
+    r.allow({"timeseries_every", "checkpoint_every", "dump_every", "end_time",
+             "basal_layer_packing"}, "");
+    r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
+    r.number("checkpoint_every", s.output.checkpoint_every, closed(0, 1e7));
+    r.number("dump_every", s.output.dump_every, closed(0, 1e7));
+    r.number("end_time", s.output.end_time, closed(0, 1e7));
+    r.number("basal_layer_packing", s.output.basal_layer_packing, {0, 1, true, false});
+    r.finish();
+  }
+
+  auto species_index = [&](const std::string& name, const std::string& key) {
+    for (size_t k = 0; k < s.species.size(); ++k)
+      if (s.species[k].name == name) return static_cast<int>(k);
+    std::string allowed;
+    for (const auto& sp : s.species) allowed += (allowed.empty() ? "" : ", ") + ("\"" + sp.name + "\"");
+    throw ConfigError(source, key, "unknown species \"" + name + "\" (declared: " + allowed + ")");
+  };
+
+  if (auto a = top.array("walls")) {
+    for (size_t w = 0; w < a->size(); ++w) {
+      const std::string key = "walls[" + std::to_string(w) + "]";
+      if (!(*a)[w].is_table()) throw ConfigError(source, key, "expected a table [[walls]]");
+      TableReader r(*(*a)[w].as_table(), key, source);
+      r.allow({"name", "points", "bed"}, "");
+      WallDef wall;
+      wall.name = "wall" + std::to_string(w);
+      r.string("name", wall.name);
+      r.boolean("bed", wall.bed);
+      const toml::array* pts = r.array("points");
+      if (!pts || pts->size() < 2) r.fail("points", "a wall needs at least two points [[x, y], [x, y], ...]");
+      for (size_t k = 0; k < pts->size(); ++k)
+        wall.points.push_back(read_point((*pts)[k], source, r.key("points[" + std::to_string(k) + "]")));
+      for (size_t k = 0; k + 1 < wall.points.size(); ++k)
+        if (wall.points[k] == wall.points[k + 1])
+          r.fail("points[" + std::to_string(k + 1) + "]", "repeats the point before it (a zero-length segment)");
+      r.finish();
+      s.walls.push_back(wall);
+    }
+  }
+  if (auto a = top.array("particles")) {
+    if (s.avalanche) throw ConfigError(source, "particles", "a scene has either [avalanche] or explicit [[particles]], not both");
+    for (size_t k = 0; k < a->size(); ++k) {
+      const std::string key = "particles[" + std::to_string(k) + "]";
+      if (!(*a)[k].is_table()) throw ConfigError(source, key, "expected a table [[particles]]");
+      TableReader r(*(*a)[k].as_table(), key, source);
+      r.allow({"species", "x", "y", "vx", "vy", "omega", "diameter"}, "");
+      ParticleDef p;
+      std::string sp_name = s.species.size() == 1 ? s.species[0].name : "";
+      r.string("species", sp_name);
+      if (sp_name.empty()) r.fail("species", "is required when the scene has several species");
+      p.species = species_index(sp_name, r.key("species"));
+      p.diameter = s.species[p.species].diameter;
+      r.number("x", p.x, closed(-1e9, 1e9));
+      r.number("y", p.y, closed(-1e9, 1e9));
+      r.number("vx", p.vx, closed(-1e6, 1e6));
+      r.number("vy", p.vy, closed(-1e6, 1e6));
+      r.number("omega", p.omega, closed(-1e9, 1e9));
+      r.number("diameter", p.diameter, positive(1e6));
+      r.finish();
+      s.particles.push_back(p);
+    }
+  }
+  top.finish();
+  if (!s.avalanche && s.particles.empty() && s.walls.empty())
+    throw ConfigError(source, "avalanche", "the scene has no [avalanche], no [[particles]] and no [[walls]]: nothing to simulate");
+  return s;
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw ConfigError("--set", text, "expected key=value, e.g. --set contact.normal_model=hertz");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+SceneDef read_scene(const std::string& text, const std::string& source,
+                    const std::vector<Override>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw ConfigError(source, where.str(), std::string(e.description()));
+  }
+  for (const auto& o : overrides) apply_override(root, o, "--set " + o.key + "=" + o.value);
+  return read_document(root, source);
+}
+
+SceneDef read_scene_file(const std::string& path, const std::vector<Override>& overrides) {
+  std::string text;
+  try {
+    text = read_file(path);
+  } catch (const IoError& e) {
+    throw ConfigError(path, "(file)", e.what());
+  }
+  return read_scene(text, path, overrides);
+}
+
+const char* to_string(NormalModel m) {
+  for (const auto& [name, value] : kNormalModels)
+    if (value == m) return name.c_str();
+  return "?";
+}
+const char* to_string(IntegratorKind k) {
+  for (const auto& [name, value] : kIntegrators)
+    if (value == k) return name.c_str();
+  return "?";
+}
+
+namespace {
+
+toml::table physics_tables(const SceneDef& s, bool include_rest) {
+  toml::table root;
+  root.insert("name", s.name);
+  root.insert("material", toml::table{{"density", s.material.density},
+                                      {"friction", s.material.friction},
+                                      {"wall_friction", s.material.wall_friction},
+                                      {"restitution", s.material.restitution},
+                                      {"wall_restitution", s.material.wall_restitution}});
+  root.insert("contact", toml::table{{"normal_model", to_string(s.contact.normal_model)},
+                                     {"design_impact_speed", s.contact.design_impact_speed},
+                                     {"design_max_overlap", s.contact.design_max_overlap},
+                                     {"stiffness_ratio", s.contact.stiffness_ratio}});
+  root.insert("integration", toml::table{{"integrator", to_string(s.integration.integrator)},
+                                         {"dt_fraction", s.integration.dt_fraction},
+                                         {"skin", s.integration.skin},
+                                         {"gravity", s.integration.gravity}});
+  toml::table species;
+  for (const auto& sp : s.species)
+    species.insert(sp.name, toml::table{{"diameter", sp.diameter},
+                                        {"spread", sp.spread},
+                                        {"area_share", sp.area_share}});
+  root.insert("species", species);
+  if (s.avalanche) {
+    const auto& a = *s.avalanche;
+    root.insert("avalanche", toml::table{{"incline_angle", a.incline_angle_deg},
+                                         {"incline_length", a.incline_length},
+                                         {"pile_width", a.pile_width},
+                                         {"floor_length", a.floor_length},
+                                         {"wall_height", a.wall_height},
+                                         {"reference_large_count", a.reference_large_count}});
+    const auto& p = s.preparation;
+    root.insert("preparation", toml::table{{"seed", static_cast<std::int64_t>(p.seed)},
+                                           {"initial_packing", p.initial_packing},
+                                           {"initial_speed", p.initial_speed},
+                                           {"growth_time", p.growth_time},
+                                           {"settle_ek_threshold", p.settle_ek_threshold},
+                                           {"settle_hold", p.settle_hold},
+                                           {"settle_max_time", p.settle_max_time}});
+  }
+  if (include_rest) {
+    root.insert("rest", toml::table{{"ek_threshold", s.rest.ek_threshold},
+                                    {"hold", s.rest.hold},
+                                    {"max_time", s.rest.max_time}});
+    root.insert("output", toml::table{{"timeseries_every", s.output.timeseries_every},
+                                      {"checkpoint_every", s.output.checkpoint_every},
+                                      {"dump_every", s.output.dump_every},
+                                      {"end_time", s.output.end_time},
+                                      {"basal_layer_packing", s.output.basal_layer_packing}});
+  }
+  return root;
+}
+
+}  // namespace
+
+std::string write_scene(const SceneDef& s) {
+  toml::table root = physics_tables(s, true);
+  if (!s.walls.empty()) {
+    toml::array walls;
+    for (const auto& w : s.walls) {
+      toml::array pts;
+      for (const auto& [x, y] : w.points) pts.push_back(toml::array{x, y});
+      walls.push_back(toml::table{{"name", w.name}, {"points", pts}, {"bed", w.bed}});
+    }
+    root.insert("walls", walls);
+  }
+  if (!s.particles.empty()) {
+    toml::array parts;
+    for (const auto& p : s.particles)
+      parts.push_back(toml::table{{"species", s.species[p.species].name}, {"x", p.x}, {"y", p.y},
+                                  {"vx", p.vx}, {"vy", p.vy}, {"omega", p.omega},
+                                  {"diameter", p.diameter}});
+    root.insert("particles", parts);
+  }
+  std::ostringstream out;
+  out << "# Every value this run used, defaults included (runout scene.resolved.toml)\n";
+  out << toml::toml_formatter(root, toml::toml_formatter::default_flags &
+                                        ~toml::format_flags::allow_literal_strings)
+      << "\n";
+  return out.str();
+}
+
+std::string pile_key_text(const SceneDef& s) {
+  toml::table root = physics_tables(s, false);
+  root.erase("name");
+  std::ostringstream out;
+  out << root;
+  return out.str();
+}
+
+}  // namespace runout::io
+
+namespace runout::io {
+
+const std::string& embedded_quick_scene() {
+  static const std::string text =
+#include "quick_scene.inc"
+      ;
+  return text;
+}
+
+const std::string& embedded_bench_scene() {
+  static const std::string text =
+#include "thesis_4_40_scene.inc"
+      ;
+  return text;
+}
+
+}  // namespace runout::io

@@ -1,0 +1,131 @@
+#include "runout/checkpoint.hpp"
+
+#include "runout/errors.hpp"
+
+namespace runout {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'U', 'N', 'O', 'U', 'T', 'C', 'K'};
+
+std::uint64_t checksum(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : bytes) { h ^= c; h *= 1099511628211ull; }
+  return h;
+}
+
+}  // namespace
+
+void ByteReader::fail() { throw IoError(name_ + ": checkpoint is truncated or corrupt"); }
+
+std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
+                              std::string_view run_state) {
+  ByteWriter w;
+  const Particles& p = world.particles();
+  w.put(scene_key);
+  w.put(world.time());
+  w.put(world.step_count());
+  w.put_vector(p.x); w.put_vector(p.y); w.put_vector(p.vx); w.put_vector(p.vy);
+  w.put_vector(p.omega); w.put_vector(p.angle); w.put_vector(p.ax); w.put_vector(p.ay);
+  w.put_vector(p.alpha); w.put_vector(p.radius); w.put_vector(p.mass);
+  w.put_vector(p.inv_inertia); w.put_vector(p.species); w.put_vector(p.id);
+  std::vector<std::uint8_t> active;
+  for (const auto& s : world.segments()) active.push_back(s.active ? 1 : 0);
+  w.put_vector(active);
+  const PairContacts& c = world.pairs();
+  w.put_vector(c.row_start); w.put_vector(c.j); w.put_vector(c.overlap_max);
+  w.put_vector(c.tangential_spring);
+  const WallContacts& wc = world.wall_contacts();
+  w.put_vector(wc.row_start); w.put_vector(wc.segment); w.put_vector(wc.overlap_max);
+  w.put_vector(wc.tangential_spring);
+  w.put_string(run_state);
+
+  std::string out(kMagic, sizeof(kMagic));
+  ByteWriter head;
+  head.put(kCheckpointVersion);
+  head.put<std::uint64_t>(w.bytes().size());
+  out += head.bytes();
+  out += w.bytes();
+  ByteWriter tail;
+  tail.put(checksum(w.bytes()));
+  out += tail.bytes();
+  return out;
+}
+
+std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
+                              const std::string& name) {
+  if (bytes.size() < sizeof(kMagic) + 4 + 8 + 8 ||
+      std::string_view(bytes.data(), sizeof(kMagic)) != std::string_view(kMagic, sizeof(kMagic)))
+    throw IoError(name + ": not a runout checkpoint");
+  ByteReader head(bytes.substr(sizeof(kMagic)), name);
+  const auto version = head.get<std::uint32_t>();
+  if (version != kCheckpointVersion)
+    throw IoError(name + ": checkpoint version " + std::to_string(version) +
+                  " is not supported (this runout reads version " +
+                  std::to_string(kCheckpointVersion) + ")");
+  const auto size = head.get<std::uint64_t>();
+  const std::size_t start = sizeof(kMagic) + 4 + 8;
+  if (bytes.size() != start + size + 8) throw IoError(name + ": checkpoint is truncated");
+  const std::string_view payload = bytes.substr(start, size);
+  ByteReader tail(bytes.substr(start + size), name);
+  if (tail.get<std::uint64_t>() != checksum(payload))
+    throw IoError(name + ": checkpoint checksum mismatch (the file is corrupt)");
+
+  ByteReader r(payload, name);
+  if (r.get<std::uint64_t>() != scene_key)
+    throw IoError(name + ": checkpoint was written for a different scene");
+  const double time = r.get<double>();
+  const auto steps = r.get<std::int64_t>();
+  Particles p;
+  p.x = r.get_vector<double>(); p.y = r.get_vector<double>();
+  p.vx = r.get_vector<double>(); p.vy = r.get_vector<double>();
+  p.omega = r.get_vector<double>(); p.angle = r.get_vector<double>();
+  p.ax = r.get_vector<double>(); p.ay = r.get_vector<double>(); p.alpha = r.get_vector<double>();
+  p.radius = r.get_vector<double>(); p.mass = r.get_vector<double>();
+  p.inv_inertia = r.get_vector<double>(); p.species = r.get_vector<std::int32_t>();
+  p.id = r.get_vector<std::int64_t>();
+  const std::size_t n = p.x.size();
+  for (auto* v : {&p.y, &p.vx, &p.vy, &p.omega, &p.angle, &p.ax, &p.ay, &p.alpha, &p.radius,
+                  &p.mass, &p.inv_inertia})
+    if (v->size() != n) throw IoError(name + ": checkpoint is corrupt (array sizes differ)");
+  if (p.species.size() != n || p.id.size() != n) throw IoError(name + ": checkpoint is corrupt");
+  p.inv_mass.resize(n);
+  for (std::size_t k = 0; k < n; ++k) p.inv_mass[k] = 1.0 / p.mass[k];
+  for (auto s : p.species)
+    if (s < 0 || s >= world.table().species_count) throw IoError(name + ": checkpoint is corrupt (species)");
+
+  const auto active = r.get_vector<std::uint8_t>();
+  if (active.size() != world.segments().size())
+    throw IoError(name + ": checkpoint has a different number of walls than the scene");
+
+  PairContacts pairs;
+  pairs.row_start = r.get_vector<std::int32_t>();
+  pairs.j = r.get_vector<std::int32_t>();
+  pairs.overlap_max = r.get_vector<double>();
+  pairs.tangential_spring = r.get_vector<double>();
+  WallContacts walls;
+  walls.row_start = r.get_vector<std::int32_t>();
+  walls.segment = r.get_vector<std::int32_t>();
+  walls.overlap_max = r.get_vector<double>();
+  walls.tangential_spring = r.get_vector<double>();
+  std::string run_state = r.get_string();
+  if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
+  if (pairs.row_start.size() != n + 1 || walls.row_start.size() != n + 1 ||
+      pairs.j.size() != pairs.overlap_max.size() ||
+      pairs.j.size() != pairs.tangential_spring.size() ||
+      walls.segment.size() != walls.overlap_max.size() ||
+      walls.segment.size() != walls.tangential_spring.size() ||
+      static_cast<std::size_t>(pairs.row_start[n]) != pairs.j.size() ||
+      static_cast<std::size_t>(walls.row_start[n]) != walls.segment.size())
+    throw IoError(name + ": checkpoint is corrupt (contact lists)");
+
+  World restored(std::move(p), world.segments(), world.table(), world.settings());
+  for (std::size_t s = 0; s < active.size(); ++s)
+    if (!active[s]) restored.deactivate_wall_segment(s);
+  restored.set_clock(time, steps);
+  restored.restore_history(pairs, walls);
+  world = std::move(restored);
+  return run_state;
+}
+
+}  // namespace runout

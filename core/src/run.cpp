@@ -1,0 +1,213 @@
+#include "runout/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "runout/checkpoint.hpp"
+#include "runout/errors.hpp"
+
+namespace runout {
+
+std::string encode_run_state(const RunState& s) {
+  ByteWriter w;
+  w.put(s.ep0); w.put(s.energy_reference_y);
+  w.put(s.com_release.x()); w.put(s.com_release.y());
+  w.put(s.top_release.top_x); w.put(s.top_release.top_y);
+  w.put(s.below_since); w.put(s.peak_ek); w.put(s.t_star_peak_ek); w.put(s.next_sample);
+  w.put(s.wall_seconds);
+  w.put_vector(s.series);
+  return w.bytes();
+}
+
+RunState decode_run_state(const std::string& bytes, const std::string& name) {
+  ByteReader r(bytes, name);
+  RunState s;
+  s.ep0 = r.get<double>(); s.energy_reference_y = r.get<double>();
+  s.com_release.x() = r.get<double>(); s.com_release.y() = r.get<double>();
+  s.top_release.top_x = r.get<double>(); s.top_release.top_y = r.get<double>();
+  s.below_since = r.get<double>(); s.peak_ek = r.get<double>();
+  s.t_star_peak_ek = r.get<double>(); s.next_sample = r.get<double>();
+  s.wall_seconds = r.get<double>();
+  s.series = r.get_vector<TimeseriesRow>();
+  return s;
+}
+
+namespace {
+
+// Lowest point of the scene at release: the floor in the thesis scene (Ep0 of table 3.2 is
+// measured from there).
+double lowest_point(const World& w) {
+  double y = std::numeric_limits<double>::infinity();
+  for (const auto& s : w.segments()) y = std::min({y, s.a.y(), s.b.y()});
+  const auto& p = w.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) y = std::min(y, p.y[k] - p.radius[k]);
+  return std::isfinite(y) ? y : 0.0;
+}
+
+}  // namespace
+
+AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup)
+    : world_(world), scene_(scene), setup_(setup) {
+  const auto& p = world.particles();
+  state_.energy_reference_y = lowest_point(world);
+  const double g = scene.integration.gravity;
+  double ep = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) ep += p.mass[k] * g * (p.y[k] - state_.energy_reference_y);
+  state_.ep0 = ep;
+  state_.com_release = centre_of_mass(p);
+  state_.top_release = highest_point(p);
+  state_.next_sample = 0;
+}
+
+AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
+                           RunState state)
+    : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {}
+
+void AvalancheRun::add_observer(Observer& observer, Schedule schedule) {
+  std::sort(schedule.at.begin(), schedule.at.end());
+  Scheduled s{&observer, schedule, schedule.first, 0};
+  // Skip what already happened (a resumed run).
+  const double now = t_star() - 0.5 * setup_.dt / setup_.unit_time;
+  if (s.schedule.every > 0)
+    while (s.next_every < now) s.next_every += s.schedule.every;
+  while (s.next_at < s.schedule.at.size() && s.schedule.at[s.next_at] < now) ++s.next_at;
+  observers_.push_back(s);
+}
+
+double AvalancheRun::t_star() const { return world_.time() / setup_.unit_time; }
+
+TimeseriesRow AvalancheRun::sample() const {
+  const auto& p = world_.particles();
+  const double d = setup_.unit_length;
+  TimeseriesRow row;
+  row.t_star = t_star();
+  const double ep0 = state_.ep0 > 0 ? state_.ep0 : 1.0;
+  row.ek_over_ep0 = translational_energy(p) / ep0;
+  row.erot_over_ep0 = rotational_energy(p) / ep0;
+  const Eigen::Vector2d com = centre_of_mass(p);
+  row.x_cm = com.x() / d;
+  row.y_cm = com.y() / d;
+  const SegregationHeights h = mean_heights(p, world_.segments(), setup_.roles);
+  row.small_mean_height = h.small / d;
+  row.large_mean_height = h.large / d;
+  row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
+  row.front_x = farthest_edge_x(p) / d;
+  return row;
+}
+
+void AvalancheRun::fire_observers() {
+  const double half_step = 0.5 * setup_.dt / setup_.unit_time;
+  const double now = t_star();
+  for (auto& s : observers_) {
+    bool due = false;
+    if (s.schedule.every > 0 && now >= s.next_every - half_step) {
+      due = true;
+      while (s.next_every <= now + half_step) s.next_every += s.schedule.every;
+    }
+    while (s.next_at < s.schedule.at.size() && now >= s.schedule.at[s.next_at] - half_step) {
+      due = true;
+      ++s.next_at;
+    }
+    if (due) s.observer->observe(world_, now);
+  }
+}
+
+// At rest (SPEC §5): E_k/Ep0 below the threshold continuously for `hold` t*.
+bool AvalancheRun::finished() {
+  const double now = t_star();
+  const auto& p = world_.particles();
+  const double ratio = state_.ep0 > 0 ? translational_energy(p) / state_.ep0 : 0.0;
+  if (ratio > state_.peak_ek) { state_.peak_ek = ratio; state_.t_star_peak_ek = now; }
+  if (ratio < scene_.rest.ek_threshold) {
+    if (state_.below_since < 0) state_.below_since = now;
+    if (now - state_.below_since >= scene_.rest.hold) { at_rest_ = true; return true; }
+  } else {
+    state_.below_since = -1;
+  }
+  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - 0.5 * setup_.dt / setup_.unit_time) return true;
+  return now >= scene_.rest.max_time;
+}
+
+RunResult AvalancheRun::run() {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const std::int64_t steps0 = world_.step_count();
+  const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(setup_.unit_time / setup_.dt));
+  const std::int64_t check_every = std::max<std::int64_t>(1, steps_per_unit / 20);
+  auto last_report = t0;
+  std::int64_t steps_at_report = steps0;
+
+  auto record = [&] {
+    if (t_star() >= state_.next_sample - 0.5 * setup_.dt / setup_.unit_time) {
+      state_.series.push_back(sample());
+      while (state_.next_sample <= t_star() + 0.5 * setup_.dt / setup_.unit_time)
+        state_.next_sample += scene_.output.timeseries_every;
+    }
+  };
+  record();
+  fire_observers();
+  at_rest_ = false;
+  bool done = finished();
+  while (!done) {
+    world_.step();
+    record();
+    fire_observers();
+    if (world_.step_count() % check_every == 0) {
+      done = finished();
+      const auto now = Clock::now();
+      const double secs = std::chrono::duration<double>(now - last_report).count();
+      if (progress_ && secs >= 2.0) {
+        const double rate = secs > 0 ? (world_.step_count() - steps_at_report) / secs : 0.0;
+        last_report = now;
+        steps_at_report = world_.step_count();
+        progress_(t_star(), state_.series.empty() ? 0.0 : translational_energy(world_.particles()) / std::max(state_.ep0, 1e-300), rate);
+      }
+    }
+  }
+  state_.series.push_back(sample());  // the final state is always in the series
+  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+  state_.wall_seconds += secs;
+  RunResult r = result(state_.wall_seconds);
+  r.particle_steps_per_second =
+      secs > 0 ? double(world_.step_count() - steps0) * double(world_.particles().size()) / secs : 0.0;
+  return r;
+}
+
+RunResult AvalancheRun::result(double wall_seconds) const {
+  RunResult r;
+  const auto& p = world_.particles();
+  r.at_rest = at_rest_;
+  r.t_star_end = t_star();
+  if (at_rest_) r.t_star_rest = state_.below_since;
+  r.steps = world_.step_count();
+  r.dt = setup_.dt;
+  r.wall_seconds = wall_seconds;
+  r.counts = setup_.counts;
+  // Large = the species of the largest nominal diameter; everything else counts as small.
+  r.n_large = setup_.counts[setup_.largest_species];
+  r.n_small = 0;
+  for (int c : setup_.counts) r.n_small += c;
+  r.n_small -= r.n_large;
+  r.com_release = state_.com_release;
+  r.com_rest = centre_of_mass(p);
+  r.H_cm = std::abs(r.com_rest.y() - r.com_release.y());   // eq. 4.2
+  r.L_cm = std::abs(r.com_rest.x() - r.com_release.x());   // eq. 4.3
+  r.mu_global = r.L_cm > 0 ? r.H_cm / r.L_cm : std::numeric_limits<double>::quiet_NaN();  // eq. 4.4
+  const double front = farthest_edge_x(p);
+  r.H_front = state_.top_release.top_y - state_.energy_reference_y;
+  r.L_front = front - state_.top_release.top_x;
+  r.H_over_L_front = r.L_front > 0 ? r.H_front / r.L_front : std::numeric_limits<double>::quiet_NaN();
+  r.ep0 = state_.ep0;
+  r.peak_ek_over_ep0 = state_.peak_ek;
+  r.t_star_peak_ek = state_.t_star_peak_ek;
+  r.basal_layer = basal_layer(p, world_.segments(), setup_.roles, setup_.large_diameter,
+                              scene_.output.basal_layer_packing);
+  r.H_layer_over_d = r.basal_layer.mean_thickness / setup_.unit_length;
+  r.H_layer_over_d_spread = r.basal_layer.spread / setup_.unit_length;
+  r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
+  r.profile = world_.profile();
+  return r;
+}
+
+}  // namespace runout
