@@ -56,8 +56,13 @@ std::uint64_t run_key(const SceneDef& scene) {
   return io::fnv1a64(io::write_scene(s));
 }
 
+// Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
+// one that this binary would not have settled itself.
+constexpr int kPhysicsRevision = 1;
+
 std::uint64_t pile_key(const SceneDef& scene) {
-  return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion));
+  return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +
+                     "physics-r" + std::to_string(kPhysicsRevision));
 }
 
 void check_explicit_scene(const SceneDef& scene, const std::string& source) {

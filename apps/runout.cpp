@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", run.overrides, "override a scene key, e.g. --set contact.normal_model=hertz")
       ->take_all()->allow_extra_args(false);
   run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
+      ->check(CLI::Range(1, 256));
   run_cmd->add_option("--seed", run.seed, "preparation seed (overrides preparation.seed)")
       ->check(CLI::Range(0LL, 9000000000000000000LL));
   run_cmd->add_option("--dump-every", run.dump_every,
@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--steps", bench.steps, "timed steps")->check(CLI::Range(1LL, 100000000LL));
   bench_cmd->add_option("--warmup-steps", bench.warmup_steps, "steps after release before timing (default: to t* = 5)")
       ->check(CLI::Range(0LL, 100000000LL));
-  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 256));
   bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
   bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
 

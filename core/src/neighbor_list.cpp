@@ -85,13 +85,11 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     }
     std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
     cell_disc_.resize(n);
-    {
-      std::vector<std::int32_t> cursor(cell_start_.begin(), cell_start_.end() - 1);
-      for (std::int32_t k = 0; k < n; ++k) cell_disc_[cursor[disc_cell_[k]]++] = k;
-    }
+    cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::int32_t k = 0; k < n; ++k) cell_disc_[cursor_[disc_cell_[k]]++] = k;
 
     // ---- disc pairs: each thread a contiguous block of i ----
-    thread_i_.resize(threads);
+    thread_found_.resize(threads);
     thread_j_.resize(threads);
 #pragma omp parallel num_threads(threads)
     {
@@ -99,7 +97,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       const auto [lo, hi] = block(n, t, omp_get_num_threads());
       auto& out_j = thread_j_[t];
       out_j.clear();
-      std::vector<std::int32_t> found;
+      auto& found = thread_found_[t];
       for (std::int32_t i = lo; i < hi; ++i) {
         const double reach = p.radius[i] + rmax + skin;
         const std::int32_t span = static_cast<std::int32_t>(std::ceil(reach * inv_cell));
@@ -117,7 +115,9 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
               if (dx * dx + dy * dy < cut * cut) found.push_back(j);
             }
           }
-        std::sort(found.begin(), found.end());
+        // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
+        for (std::size_t a = 1; a < found.size(); ++a)
+          for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
         pairs.row_start[i + 1] = static_cast<std::int32_t>(found.size());
         out_j.insert(out_j.end(), found.begin(), found.end());
       }
@@ -137,19 +137,31 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
                   i);
     }
 
-    // ---- disc–wall pairs ----
+    // ---- disc–wall pairs: same blocking as the disc pairs ----
     const auto ns = static_cast<std::int32_t>(segments.size());
-    for (std::int32_t k = 0; k < n; ++k) {
-      const Eigen::Vector2d c(p.x[k], p.y[k]);
-      for (std::int32_t s = 0; s < ns; ++s) {
-        if (segments[s].active && distance_to(segments[s], c) < p.radius[k] + skin) {
-          walls.disc.push_back(k);
-          walls.segment.push_back(s);
-          ++walls.row_start[k + 1];
-        }
+    thread_walls_.resize(threads);
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      const auto [lo, hi] = block(n, t, omp_get_num_threads());
+      auto& out = thread_walls_[t];
+      out.clear();
+      for (std::int32_t k = lo; k < hi; ++k) {
+        const Eigen::Vector2d c(p.x[k], p.y[k]);
+        for (std::int32_t s = 0; s < ns; ++s)
+          if (segments[s].active && distance_to(segments[s], c) < p.radius[k] + skin) {
+            out.push_back(s);
+            ++walls.row_start[k + 1];
+          }
       }
     }
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
+    walls.segment.clear();
+    for (int t = 0; t < threads; ++t)
+      walls.segment.insert(walls.segment.end(), thread_walls_[t].begin(), thread_walls_[t].end());
+    walls.disc.resize(walls.segment.size());
+    for (std::int32_t k = 0; k < n; ++k)
+      std::fill(walls.disc.begin() + walls.row_start[k], walls.disc.begin() + walls.row_start[k + 1], k);
   }
 
   // ---- history and per-step buffers ----
@@ -166,21 +178,14 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
                 old_walls_.tangential_spring, walls.row_start, walls.segment, walls.overlap_max,
                 walls.tangential_spring, n, threads);
 
-  // ---- gather index: own row first (side 0), then pairs where the disc is j (side 1) ----
-  pairs.gather_start.assign(static_cast<size_t>(n) + 1, 0);
-  for (size_t q = 0; q < np; ++q) {
-    ++pairs.gather_start[pairs.i[q] + 1];
-    ++pairs.gather_start[pairs.j[q] + 1];
-  }
-  std::partial_sum(pairs.gather_start.begin(), pairs.gather_start.end(),
-                   pairs.gather_start.begin());
-  pairs.gather.resize(2 * np);
-  std::vector<std::int32_t> cursor(pairs.gather_start.begin(), pairs.gather_start.end() - 1);
-  for (std::int32_t k = 0; k < n; ++k)
-    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q)
-      pairs.gather[cursor[k]++] = 2 * q;
-  for (size_t q = 0; q < np; ++q)
-    pairs.gather[cursor[pairs.j[q]]++] = static_cast<std::int32_t>(2 * q + 1);
+  // ---- incoming pairs per disc (k is the pair's j), in pair order ----
+  pairs.incoming_start.assign(static_cast<size_t>(n) + 1, 0);
+  for (size_t q = 0; q < np; ++q) ++pairs.incoming_start[pairs.j[q] + 1];
+  std::partial_sum(pairs.incoming_start.begin(), pairs.incoming_start.end(),
+                   pairs.incoming_start.begin());
+  pairs.incoming.resize(np);
+  cursor_.assign(pairs.incoming_start.begin(), pairs.incoming_start.end() - 1);
+  for (size_t q = 0; q < np; ++q) pairs.incoming[cursor_[pairs.j[q]]++] = static_cast<std::int32_t>(q);
 }
 
 }  // namespace runout

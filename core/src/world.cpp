@@ -1,6 +1,9 @@
 #include "runout/world.hpp"
 
+#include <omp.h>
+
 #include <chrono>
+#include <tuple>
 #include <cmath>
 #include <sstream>
 
@@ -34,7 +37,7 @@ World::World(Particles particles, std::vector<Segment> segments, ContactTable ta
              StepSettings settings)
     : particles_(std::move(particles)), segments_(std::move(segments)),
       table_(std::move(table)), settings_(settings) {
-  settings_.threads = std::max(1, settings_.threads);
+  settings_.threads = std::clamp(settings_.threads, 1, kMaxThreads);
 }
 
 void World::deactivate_wall(int wall_index) {
@@ -70,6 +73,68 @@ void World::restore_history(const PairContacts& pairs, const WallContacts& walls
   rebuild_lists();
 }
 
+// Renumbers the discs along x (then y) in cells of about one large diameter, so each thread's
+// contiguous block of discs is a compact stretch of the flow and its neighbours mostly live in
+// the same block (and cache). Contact history follows the discs. Done on a fixed step cadence,
+// so results stay bit-identical across thread counts and skins.
+void World::reorder_discs() {
+  auto& p = particles_;
+  const std::size_t n = p.size();
+  if (n < 2) return;
+  double xmin = p.x[0], ymin = p.y[0], rmax = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    xmin = std::min(xmin, p.x[k]); ymin = std::min(ymin, p.y[k]); rmax = std::max(rmax, p.radius[k]);
+  }
+  const double cell = std::max(2.0 * rmax, 1e-12);
+  std::vector<std::pair<std::int64_t, std::int64_t>> key(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto cx = static_cast<std::int64_t>((p.x[k] - xmin) / cell);
+    const auto cy = static_cast<std::int64_t>((p.y[k] - ymin) / cell);
+    key[k] = {cx * (std::int64_t(1) << 31) + cy, static_cast<std::int64_t>(k)};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<std::int32_t> new_index(n);
+  for (std::size_t k = 0; k < n; ++k) new_index[key[k].second] = static_cast<std::int32_t>(k);
+  auto permute = [&](auto& v) {
+    auto copy = v;
+    for (std::size_t k = 0; k < n; ++k) v[k] = copy[key[k].second];
+  };
+  permute(p.x); permute(p.y); permute(p.vx); permute(p.vy); permute(p.omega);
+  permute(p.radius); permute(p.inv_mass); permute(p.inv_inertia); permute(p.species);
+  permute(p.ax); permute(p.ay); permute(p.alpha); permute(p.angle); permute(p.mass); permute(p.id);
+
+  // History keyed by the new numbering, rows sorted, ready for the search to carry over.
+  PairContacts old;
+  std::vector<std::tuple<std::int32_t, std::int32_t, double, double>> pairs;
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    if (pairs_.overlap_max[q] == 0.0 && pairs_.tangential_spring[q] == 0.0) continue;
+    std::int32_t a = new_index[pairs_.i[q]], b = new_index[pairs_.j[q]];
+    if (a > b) std::swap(a, b);
+    pairs.emplace_back(a, b, pairs_.overlap_max[q], pairs_.tangential_spring[q]);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  old.row_start.assign(n + 1, 0);
+  for (const auto& [a, b, om, sp] : pairs) {
+    ++old.row_start[a + 1];
+    old.j.push_back(b); old.overlap_max.push_back(om); old.tangential_spring.push_back(sp);
+  }
+  for (std::size_t k = 0; k < n; ++k) old.row_start[k + 1] += old.row_start[k];
+  WallContacts old_walls;
+  std::vector<std::tuple<std::int32_t, std::int32_t, double, double>> walls;
+  for (std::size_t q = 0; q < wall_contacts_.size(); ++q)
+    walls.emplace_back(new_index[wall_contacts_.disc[q]], wall_contacts_.segment[q],
+                       wall_contacts_.overlap_max[q], wall_contacts_.tangential_spring[q]);
+  std::sort(walls.begin(), walls.end());
+  old_walls.row_start.assign(n + 1, 0);
+  for (const auto& [a, seg, om, sp] : walls) {
+    ++old_walls.row_start[a + 1];
+    old_walls.segment.push_back(seg); old_walls.overlap_max.push_back(om);
+    old_walls.tangential_spring.push_back(sp);
+  }
+  for (std::size_t k = 0; k < n; ++k) old_walls.row_start[k + 1] += old_walls.row_start[k];
+  restore_history(old, old_walls);
+}
+
 void World::rebuild_lists() {
   const auto t0 = Clock::now();
   search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, pairs_,
@@ -86,59 +151,80 @@ void World::rebuild_lists() {
 
 // The one disc–disc pair loop (SPEC §2). Flat and branch-free over the candidate pairs so the
 // compiler vectorises it: a pair that does not touch computes a force and then discards it,
-// and its history is forgotten (the contact has broken).
+// and its history is forgotten (the contact has broken). Raw pointers and per-pair-type
+// coefficient arrays keep every load a plain (gathered) double.
+namespace {
+
+template <class Law>
+struct PairKernel {
+  const double* x; const double* y; const double* vx; const double* vy; const double* om;
+  const double* r; const std::int32_t* species; const std::int32_t* pi; const std::int32_t* pj;
+  const typename Law::Coefficients* normal; const CundallStrack* tangential;
+  int species_count;
+  double dt;
+  double* overlap_max; double* spring; double* fx; double* fy; double* ft;
+
+  void operator()(std::int64_t begin, std::int64_t end) const {
+#pragma omp simd
+    for (std::int64_t q = begin; q < end; ++q) {
+      const std::int32_t i = pi[q], j = pj[q];
+      const double dx = x[j] - x[i], dy = y[j] - y[i];
+      const double dist2 = dx * dx + dy * dy;
+      const double rsum = r[i] + r[j];
+      const bool touching = dist2 < rsum * rsum;
+      const double dist = std::sqrt(dist2);
+      // Coincident centres have no normal; dx = dy = 0 gives the zero vector and a finite
+      // force (eq. 2.2). Branch-free, so the loop vectorises.
+      const double inv_dist = 1.0 / std::max(dist, 1e-300);
+      const double nx = dx * inv_dist, ny = dy * inv_dist;
+      const double overlap = rsum - dist;  // eq. 2.1
+      const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
+      const double overlap_rate = -(dvx * nx + dvy * ny);
+      const double slip = -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
+      const std::int32_t kind = species[i] * species_count + species[j];
+      double history_overlap = overlap_max[q];
+      double history_spring = spring[q];
+      const double fn = Law::force(normal[kind], overlap, overlap_rate, history_overlap);
+      const double f_t = tangential_force(tangential[kind], fn, slip * dt, history_spring);
+      overlap_max[q] = touching ? history_overlap : 0.0;
+      spring[q] = touching ? history_spring : 0.0;
+      const double fn_on = touching ? fn : 0.0, ft_on = touching ? f_t : 0.0;
+      // Force on i: normal pushes i away from j, tangential acts along s = (-ny, nx).
+      fx[q] = -fn_on * nx - ft_on * ny;
+      fy[q] = -fn_on * ny + ft_on * nx;
+      ft[q] = ft_on;
+    }
+  }
+};
+
+}  // namespace
+
 template <class Law>
 void World::pair_forces() {
   const auto& p = particles_;
   auto& c = pairs_;
-  const auto n = static_cast<std::int64_t>(c.size());
-  const double dt = settings_.dt;
   const int ns = table_.species_count;
-  const double* __restrict x = p.x.data();
-  const double* __restrict y = p.y.data();
-  const double* __restrict vx = p.vx.data();
-  const double* __restrict vy = p.vy.data();
-  const double* __restrict om = p.omega.data();
-  const double* __restrict r = p.radius.data();
-  const std::int32_t* __restrict sp = p.species.data();
-  const std::int32_t* __restrict pi = c.i.data();
-  const std::int32_t* __restrict pj = c.j.data();
-  double* __restrict overlap_max = c.overlap_max.data();
-  double* __restrict spring = c.tangential_spring.data();
-  double* __restrict out_fx = c.fx.data();
-  double* __restrict out_fy = c.fy.data();
-  double* __restrict out_ft = c.ft.data();
-  const PairCoefficients* __restrict coef = table_.pair.data();
-
-#pragma omp parallel for simd num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static)
-  for (std::int64_t q = 0; q < n; ++q) {
-    const std::int32_t i = pi[q], j = pj[q];
-    const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double dist2 = dx * dx + dy * dy;
-    const double rsum = r[i] + r[j];
-    const bool touching = dist2 < rsum * rsum;
-    const double dist = std::sqrt(dist2);
-    // Coincident centres have no normal; the zero vector keeps the force finite (eq. 2.2).
-    const double inv_dist = dist > 0 ? 1.0 / dist : 0.0;
-    const double nx = dx * inv_dist, ny = dy * inv_dist;
-    const double overlap = rsum - dist;                                  // eq. 2.1
-    const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
-    const double overlap_rate = -(dvx * nx + dvy * ny);
-    const double slip = -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
-    const PairCoefficients& k = coef[sp[i] * ns + sp[j]];
-    double history_overlap = overlap_max[q];
-    double history_spring = spring[q];
-    const double fn = Law::force(normal_coefficients<Law>(k), overlap, overlap_rate,
-                                 history_overlap);
-    const double ft = tangential_force(k.tangential, fn, slip * dt, history_spring);
-    overlap_max[q] = touching ? history_overlap : 0.0;
-    spring[q] = touching ? history_spring : 0.0;
-    const double fn_on = touching ? fn : 0.0, ft_on = touching ? ft : 0.0;
-    // Force on i: normal pushes i away from j, tangential acts along s = (-ny, nx).
-    out_fx[q] = -fn_on * nx - ft_on * ny;
-    out_fy[q] = -fn_on * ny + ft_on * nx;
-    out_ft[q] = ft_on;
+  std::vector<typename Law::Coefficients> normal(table_.pair.size());
+  std::vector<CundallStrack> tangential(table_.pair.size());
+  for (std::size_t k = 0; k < table_.pair.size(); ++k) {
+    normal[k] = normal_coefficients<Law>(table_.pair[k]);
+    tangential[k] = table_.pair[k].tangential;
+  }
+  const PairKernel<Law> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
+                               p.radius.data(), p.species.data(), c.i.data(), c.j.data(),
+                               normal.data(), tangential.data(), ns, settings_.dt,
+                               c.overlap_max.data(), c.tangential_spring.data(), c.fx.data(),
+                               c.fy.data(), c.ft.data()};
+  const auto n = static_cast<std::int64_t>(c.size());
+  const int threads = settings_.threads;
+  if (threads == 1) {
+    kernel(0, n);
+    return;
+  }
+#pragma omp parallel num_threads(threads)
+  {
+    const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
+    kernel(n * t / T, n * (t + 1) / T);
   }
 }
 
@@ -195,91 +281,162 @@ void World::compute_forces() {
   profile_.wall_forces += seconds_since(t0);
 }
 
-inline void World::acceleration(std::size_t k, double& ax, double& ay, double& alpha) const {
-  const auto& c = pairs_;
-  double fx = 0, fy = 0, ft = 0;
-  for (std::int32_t e = c.gather_start[k]; e < c.gather_start[k + 1]; ++e) {
-    const std::int32_t entry = c.gather[e];
-    const std::int32_t q = entry >> 1;
-    const double sign = (entry & 1) ? -1.0 : 1.0;  // Newton's third law for j
-    fx += sign * c.fx[q];
-    fy += sign * c.fy[q];
-    ft += c.ft[q];  // torque r F_t has the same sign on both discs (eq. 2.11)
+// Sum of the contact forces on disc k plus gravity, as accelerations (eqs. 2.10–2.11): its own
+// row of pairs (k = i), then its incoming pairs (k = j, Newton's third law), then its walls.
+// Torque r F_t has the same sign on both discs of a pair.
+struct ForceSum {
+  const double* pair_fx; const double* pair_fy; const double* pair_ft;
+  const std::int32_t* row_start; const std::int32_t* incoming_start; const std::int32_t* incoming;
+  const double* wall_fx; const double* wall_fy; const double* wall_ft;
+  const std::int32_t* wall_row_start;
+  const double* inv_mass; const double* inv_inertia; const double* radius;
+  double gx, gy;
+
+  void operator()(std::int64_t k, double& ax, double& ay, double& alpha) const {
+    double fx = 0, fy = 0, ft = 0;
+    for (std::int32_t q = row_start[k]; q < row_start[k + 1]; ++q) {
+      fx += pair_fx[q]; fy += pair_fy[q]; ft += pair_ft[q];
+    }
+    for (std::int32_t e = incoming_start[k]; e < incoming_start[k + 1]; ++e) {
+      const std::int32_t q = incoming[e];
+      fx -= pair_fx[q]; fy -= pair_fy[q]; ft += pair_ft[q];
+    }
+    for (std::int32_t q = wall_row_start[k]; q < wall_row_start[k + 1]; ++q) {
+      fx += wall_fx[q]; fy += wall_fy[q]; ft += wall_ft[q];
+    }
+    ax = fx * inv_mass[k] + gx;
+    ay = fy * inv_mass[k] + gy;
+    alpha = ft * radius[k] * inv_inertia[k];
   }
-  const auto& w = wall_contacts_;
-  for (std::int32_t q = w.row_start[k]; q < w.row_start[k + 1]; ++q) {
-    fx += w.fx[q];
-    fy += w.fy[q];
-    ft += w.ft[q];
+};
+
+namespace {
+
+// Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread.
+template <class Body>
+void for_blocks(std::int64_t n, int threads, const Body& body) {
+  if (threads <= 1) {
+    body(0, n, 0);
+    return;
   }
-  const auto& p = particles_;
-  ax = fx * p.inv_mass[k] + settings_.gravity.x();  // eq. 2.10
-  ay = fy * p.inv_mass[k] + settings_.gravity.y();
-  alpha = ft * p.radius[k] * p.inv_inertia[k];  // eq. 2.11
+#pragma omp parallel num_threads(threads)
+  {
+    const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
+    body(n * t / T, n * (t + 1) / T, static_cast<int>(t));
+  }
 }
+
+}  // namespace
+
+ForceSum World::force_sum() const {
+  const auto& c = pairs_;
+  const auto& w = wall_contacts_;
+  const auto& p = particles_;
+  return ForceSum{c.fx.data(), c.fy.data(), c.ft.data(), c.row_start.data(),
+                  c.incoming_start.data(), c.incoming.data(), w.fx.data(), w.fy.data(),
+                  w.ft.data(), w.row_start.data(), p.inv_mass.data(), p.inv_inertia.data(),
+                  p.radius.data(), settings_.gravity.x(), settings_.gravity.y()};
+}
+
+// Per-thread results of an integration pass, combined in a fixed order.
+struct PassResult {
+  double max_displacement2 = 0;
+  bool finite = true;
+};
 
 // Semi-implicit Euler, the seed's integrator (eqs. 2.15–2.18): v += a dt, then x += v dt.
 void World::integrate_symplectic_euler() {
   auto& p = particles_;
-  const auto n = static_cast<std::int64_t>(p.size());
+  const ForceSum sum = force_sum();
   const double dt = settings_.dt;
-  double max_d2 = 0;
-  bool finite = true;
-#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static) reduction(max : max_d2) reduction(&& : finite)
-  for (std::int64_t k = 0; k < n; ++k) {
-    double ax, ay, alpha;
-    acceleration(k, ax, ay, alpha);
-    p.vx[k] += ax * dt;
-    p.vy[k] += ay * dt;
-    p.omega[k] += alpha * dt;
-    p.x[k] += p.vx[k] * dt;
-    p.y[k] += p.vy[k] * dt;
-    p.angle[k] += p.omega[k] * dt;
-    const double ddx = p.x[k] - x_at_rebuild_[k], ddy = p.y[k] - y_at_rebuild_[k];
-    max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
-    finite = finite && std::isfinite(p.x[k] + p.y[k] + p.vx[k] + p.vy[k] + p.omega[k]);
-  }
-  max_displacement2_ = std::max(max_displacement2_, max_d2);
-  finite_ = finite;
+  double* __restrict x = p.x.data(); double* __restrict y = p.y.data();
+  double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
+  double* __restrict om = p.omega.data(); double* __restrict angle = p.angle.data();
+  const double* __restrict x0 = x_at_rebuild_.data(); const double* __restrict y0 = y_at_rebuild_.data();
+  PassResult results[kMaxThreads];
+  for_blocks(static_cast<std::int64_t>(p.size()), settings_.threads,
+             [&](std::int64_t lo, std::int64_t hi, int t) {
+    double max_d2 = 0;
+    bool finite = true;
+    for (std::int64_t k = lo; k < hi; ++k) {
+      double ax, ay, alpha;
+      sum(k, ax, ay, alpha);
+      vx[k] += ax * dt;
+      vy[k] += ay * dt;
+      om[k] += alpha * dt;
+      x[k] += vx[k] * dt;
+      y[k] += vy[k] * dt;
+      angle[k] += om[k] * dt;
+      const double ddx = x[k] - x0[k], ddy = y[k] - y0[k];
+      max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
+      finite &= std::isfinite(x[k] + y[k] + vx[k] + vy[k] + om[k]);
+    }
+    results[t] = {max_d2, finite};
+  });
+  finish_pass(results);
 }
 
 // Velocity Verlet, first half: v(t+dt/2) = v + a dt/2; x += v(t+dt/2) dt.
 void World::verlet_half_kick_and_drift() {
   auto& p = particles_;
-  const auto n = static_cast<std::int64_t>(p.size());
   const double dt = settings_.dt, h = 0.5 * dt;
-  double max_d2 = 0;
-#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static) reduction(max : max_d2)
-  for (std::int64_t k = 0; k < n; ++k) {
-    p.vx[k] += p.ax[k] * h;
-    p.vy[k] += p.ay[k] * h;
-    p.omega[k] += p.alpha[k] * h;
-    p.x[k] += p.vx[k] * dt;
-    p.y[k] += p.vy[k] * dt;
-    p.angle[k] += p.omega[k] * dt;
-    const double ddx = p.x[k] - x_at_rebuild_[k], ddy = p.y[k] - y_at_rebuild_[k];
-    max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
-  }
-  max_displacement2_ = std::max(max_displacement2_, max_d2);
+  double* __restrict x = p.x.data(); double* __restrict y = p.y.data();
+  double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
+  double* __restrict om = p.omega.data(); double* __restrict angle = p.angle.data();
+  const double* __restrict ax = p.ax.data(); const double* __restrict ay = p.ay.data();
+  const double* __restrict alpha = p.alpha.data();
+  const double* __restrict x0 = x_at_rebuild_.data(); const double* __restrict y0 = y_at_rebuild_.data();
+  PassResult results[kMaxThreads];
+  for_blocks(static_cast<std::int64_t>(p.size()), settings_.threads,
+             [&](std::int64_t lo, std::int64_t hi, int t) {
+    double max_d2 = 0;
+    for (std::int64_t k = lo; k < hi; ++k) {
+      vx[k] += ax[k] * h;
+      vy[k] += ay[k] * h;
+      om[k] += alpha[k] * h;
+      x[k] += vx[k] * dt;
+      y[k] += vy[k] * dt;
+      angle[k] += om[k] * dt;
+      const double ddx = x[k] - x0[k], ddy = y[k] - y0[k];
+      max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
+    }
+    results[t] = {max_d2, true};
+  });
+  finish_pass(results);
 }
 
 // Velocity Verlet, second half: forces at the new positions (with the half-step velocities),
 // then v(t+dt) = v(t+dt/2) + a(t+dt) dt/2.
 void World::verlet_half_kick() {
   auto& p = particles_;
-  const auto n = static_cast<std::int64_t>(p.size());
+  const ForceSum sum = force_sum();
   const double h = 0.5 * settings_.dt;
+  const double* __restrict x = p.x.data(); const double* __restrict y = p.y.data();
+  double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
+  double* __restrict om = p.omega.data();
+  double* __restrict ax = p.ax.data(); double* __restrict ay = p.ay.data();
+  double* __restrict alpha = p.alpha.data();
+  PassResult results[kMaxThreads];
+  for_blocks(static_cast<std::int64_t>(p.size()), settings_.threads,
+             [&](std::int64_t lo, std::int64_t hi, int t) {
+    bool finite = true;
+    for (std::int64_t k = lo; k < hi; ++k) {
+      sum(k, ax[k], ay[k], alpha[k]);
+      vx[k] += ax[k] * h;
+      vy[k] += ay[k] * h;
+      om[k] += alpha[k] * h;
+      finite &= std::isfinite(x[k] + y[k] + vx[k] + vy[k] + om[k]);
+    }
+    results[t] = {0.0, finite};
+  });
+  finish_pass(results);
+}
+
+void World::finish_pass(const PassResult* results) {
   bool finite = true;
-#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static) reduction(&& : finite)
-  for (std::int64_t k = 0; k < n; ++k) {
-    acceleration(k, p.ax[k], p.ay[k], p.alpha[k]);
-    p.vx[k] += p.ax[k] * h;
-    p.vy[k] += p.ay[k] * h;
-    p.omega[k] += p.alpha[k] * h;
-    finite = finite && std::isfinite(p.x[k] + p.y[k] + p.vx[k] + p.vy[k] + p.omega[k]);
+  for (int t = 0; t < settings_.threads; ++t) {
+    max_displacement2_ = std::max(max_displacement2_, results[t].max_displacement2);
+    finite = finite && results[t].finite;
   }
   finite_ = finite;
 }
@@ -301,6 +458,7 @@ void World::check_finite() const {
 }
 
 void World::step() {
+  if (settings_.reorder_every > 0 && steps_ % settings_.reorder_every == 0) reorder_discs();
   const double half_skin = 0.5 * settings_.skin;
   auto needs_rebuild = [&] {
     return !lists_valid_ || std::sqrt(max_displacement2_) + max_growth_ >= half_skin;
@@ -316,7 +474,8 @@ void World::step() {
       rebuild_lists();
       compute_forces();
       auto& p = particles_;
-      for (std::size_t k = 0; k < p.size(); ++k) acceleration(k, p.ax[k], p.ay[k], p.alpha[k]);
+      const ForceSum sum = force_sum();
+      for (std::size_t k = 0; k < p.size(); ++k) sum(k, p.ax[k], p.ay[k], p.alpha[k]);
     }
     auto t0 = Clock::now();
     verlet_half_kick_and_drift();

@@ -80,7 +80,7 @@ inline double tangential_force(const CundallStrack& c, double normal_force,
                                double tangential_step, double& tangential_spring) {
   const double trial = tangential_spring + tangential_step;
   const double limit = c.friction * normal_force / c.k_tangential;
-  tangential_spring = std::clamp(trial, -limit, limit);
+  tangential_spring = std::max(-limit, std::min(trial, limit));
   return c.k_tangential * tangential_spring;
 }
 

@@ -19,9 +19,10 @@ struct PairContacts {
   std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)
   std::vector<double> ft;      // this step's tangential force on i along s; torque = r * ft
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
-  // Per disc k, the pairs it belongs to: entries [gather_start[k], gather_start[k+1]) of
-  // gather, each 2 p + side (side 1: k is the pair's j). Fixed order = deterministic sums.
-  std::vector<std::int32_t> gather_start, gather;
+  // Pairs whose j == k, in pair order: incoming[incoming_start[k] .. incoming_start[k+1]).
+  // A disc sums its own row, then its incoming pairs: a fixed (i, j) order whatever else the
+  // list holds, so sums are bit-identical for any skin and thread count.
+  std::vector<std::int32_t> incoming_start, incoming;
 
   std::size_t size() const { return i.size(); }
 };
@@ -46,7 +47,8 @@ class NeighborSearch {
  private:
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
-  std::vector<std::vector<std::int32_t>> thread_i_, thread_j_;
+  std::vector<std::vector<std::int32_t>> thread_found_, thread_j_, thread_walls_;
+  std::vector<std::int32_t> cursor_;
   PairContacts old_pairs_;
   WallContacts old_walls_;
 };

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct StepSettings {
   NormalModel normal_model = NormalModel::walton_braun;
   int threads = 1;
   double unit_time = 1;  // seconds per t*, for messages
+  // Renumber discs spatially every this many steps (0: never); see World::reorder_discs.
+  std::int64_t reorder_every = 0;
 };
 
 // Wall-clock seconds spent in each phase since construction.
@@ -35,6 +38,11 @@ struct StepProfile {
   double pair_forces = 0, wall_forces = 0, integrate = 0, rebuild = 0;
   std::int64_t rebuilds = 0;
 };
+
+struct ForceSum;
+struct PassResult;
+
+inline constexpr int kMaxThreads = 256;
 
 class World {
  public:
@@ -53,7 +61,7 @@ class World {
   double time() const { return time_; }            // s since the clock was last set
   std::int64_t step_count() const { return steps_; }
 
-  void set_threads(int threads) { settings_.threads = std::max(1, threads); }
+  void set_threads(int threads) { settings_.threads = std::clamp(threads, 1, kMaxThreads); }
   void set_clock(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
   // Stops a wall from acting (the gate at release, SPEC §5). Its contacts end now.
   void deactivate_wall(int wall_index);
@@ -66,11 +74,12 @@ class World {
 
  private:
   void rebuild_lists();
+  void reorder_discs();
   void compute_forces();
   template <class Law> void pair_forces();
   template <class Law> void wall_forces();
-  // Sum of contact forces on disc k plus gravity, as accelerations.
-  void acceleration(std::size_t k, double& ax, double& ay, double& alpha) const;
+  ForceSum force_sum() const;
+  void finish_pass(const PassResult* results);
   void integrate_symplectic_euler();
   void verlet_half_kick_and_drift();
   void verlet_half_kick();
