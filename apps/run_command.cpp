@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <set>
 
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
@@ -63,17 +62,6 @@ constexpr int kPhysicsRevision = 1;
 std::uint64_t pile_key(const SceneDef& scene) {
   return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +
                      "physics-r" + std::to_string(kPhysicsRevision));
-}
-
-void check_explicit_scene(const SceneDef& scene, const std::string& source) {
-  std::set<std::pair<double, double>> centres;
-  for (std::size_t k = 0; k < scene.particles.size(); ++k) {
-    const auto& p = scene.particles[k];
-    if (!centres.insert({p.x, p.y}).second)
-      throw ConfigError(source, "particles[" + std::to_string(k) + "]",
-                        "has the same centre as an earlier particle: coincident centres have no "
-                        "contact normal; move one of them");
-  }
 }
 
 struct PreparedWorld {
@@ -158,8 +146,7 @@ int run_command(const RunOptions& o) {
   SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_quick_scene(), source);
   if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
   if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
-  if (!scene.avalanche) check_explicit_scene(scene, source);
-  const SceneSetup setup = derive_setup(scene);
+  const SceneSetup setup = derive_setup(scene, source);
   const int threads = resolve_threads(o.threads);
 
   io::make_directories(o.out_dir);
@@ -241,8 +228,7 @@ int run_command(const RunOptions& o) {
 int bench_command(const BenchOptions& o) {
   const std::string source = o.scene_path.empty() ? "<embedded bench scene>" : o.scene_path;
   SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_bench_scene(), source);
-  if (!scene.avalanche) check_explicit_scene(scene, source);
-  const SceneSetup setup = derive_setup(scene);
+  const SceneSetup setup = derive_setup(scene, source);
   PreparedWorld prepared = prepare(scene, setup, std::max(o.threads, omp_get_num_procs()),
                                    o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, false);
   World& world = prepared.world;

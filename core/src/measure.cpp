@@ -80,21 +80,21 @@ BasalLayer basal_layer(const Particles& p, const std::vector<Segment>& segments,
   out.member.assign(n, 0);
   if (n == 0) return out;
 
-  // L1: central 98 % of the disc area along x.
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return p.x[a] < p.x[b]; });
-  double total = 0;
-  for (std::size_t k = 0; k < n; ++k) total += p.radius[k] * p.radius[k];
-  double acc = 0;
-  out.deposit_start = p.x[order.front()];
-  out.deposit_end = p.x[order.back()];
-  bool start_set = false;
-  for (auto k : order) {
-    acc += p.radius[k] * p.radius[k];
-    if (!start_set && acc >= 0.01 * total) { out.deposit_start = p.x[k]; start_set = true; }
-    if (acc >= 0.99 * total) { out.deposit_end = p.x[k]; break; }
-  }
+  // L1: the deposit without its scattered ends. Bins of width D along x; a bin belongs to the
+  // deposit body if its disc area per unit length is at least a tenth of the fullest bin's;
+  // L1 is the unbroken run of such bins around the fullest bin.
+  double xmin = p.x[0], xmax = p.x[0];
+  for (std::size_t k = 0; k < n; ++k) { xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]); }
+  const int nbins = std::max(1, static_cast<int>(std::floor((xmax - xmin) / large_diameter)) + 1);
+  std::vector<double> fill(nbins, 0.0);
+  for (std::size_t k = 0; k < n; ++k)
+    fill[static_cast<int>((p.x[k] - xmin) / large_diameter)] += p.radius[k] * p.radius[k];
+  const int fullest = static_cast<int>(std::max_element(fill.begin(), fill.end()) - fill.begin());
+  int first = fullest, last = fullest;
+  while (first > 0 && fill[first - 1] >= 0.1 * fill[fullest]) --first;
+  while (last + 1 < nbins && fill[last + 1] >= 0.1 * fill[fullest]) ++last;
+  out.deposit_start = xmin + first * large_diameter;
+  out.deposit_end = xmin + (last + 1) * large_diameter;
 
   // Lower contour: per bin of width D, the bottom edge height of the lowest large disc.
   const double x0 = out.deposit_start;
@@ -133,8 +133,12 @@ BasalLayer basal_layer(const Particles& p, const std::vector<Segment>& segments,
     }
   }
 
-  // H_layer for the four windows centred on the deposit centroid (eq. 4.9).
-  const double centre = centre_of_mass(p).x();
+  // H_layer for the four windows centred on the deposit centroid (eq. 4.9): the centroid of
+  // the deposit body, so scattered discs do not pull the windows off it.
+  double body_mass = 0, body_x = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (p.x[k] >= out.deposit_start && p.x[k] <= out.deposit_end) { body_mass += p.mass[k]; body_x += p.mass[k] * p.x[k]; }
+  const double centre = body_mass > 0 ? body_x / body_mass : centre_of_mass(p).x();
   const double l1 = std::max(out.deposit_end - out.deposit_start, 1e-12);
   const std::array<double, 4> fractions{1.0, 0.75, 0.5, 0.25};
   for (int w = 0; w < 4; ++w) {

@@ -33,8 +33,20 @@ int disc_count(double area_share, int reference_large_count, double large_diamet
   return static_cast<int>(std::ceil(n * (1.0 - 1e-9)));  // 3200.0000000001 is 3200
 }
 
-SceneSetup derive_setup(const SceneDef& scene) {
-  if (scene.species.empty()) throw ConfigError("scene", "species", "at least one species is required");
+SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
+  if (scene.species.empty()) throw ConfigError(source, "species", "at least one species is required");
+  {
+    std::vector<std::pair<std::pair<double, double>, std::size_t>> centres;
+    for (std::size_t k = 0; k < scene.particles.size(); ++k)
+      centres.push_back({{scene.particles[k].x, scene.particles[k].y}, k});
+    std::sort(centres.begin(), centres.end());
+    for (std::size_t k = 1; k < centres.size(); ++k)
+      if (centres[k].first == centres[k - 1].first)
+        throw ConfigError(source, "particles[" + std::to_string(std::max(centres[k].second, centres[k - 1].second)) + "]",
+                          "has the same centre as particles[" +
+                              std::to_string(std::min(centres[k].second, centres[k - 1].second)) +
+                              "]: coincident centres have no contact normal; move one of them");
+  }
   SceneSetup s;
   s.table = derive_contact_table(scene.material, scene.contact, scene.species,
                                  scene.integration.gravity);

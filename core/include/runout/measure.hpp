@@ -40,8 +40,8 @@ double basal_spin(const Particles& p, const std::vector<Segment>& segments, Spec
 // The deposit's basal layer (§4.2.1, eqs. 4.6–4.9): the lowest large disc per bin of width D
 // along x gives a lower contour (its bottom edge); small discs whose centre lies below the
 // contour form the layer. H_layer = pi sum r^2 / (L C) over windows L = L1, 3/4, 1/2, 1/4 L1
-// centred on the deposit centroid; L1 spans the central 98 % of the disc area along x (the
-// scattered ends left out).
+// centred on the deposit centroid; L1 is the unbroken stretch of D-wide bins holding at least a
+// tenth of the fullest bin's disc area (the scattered ends left out).
 struct BasalLayer {
   std::vector<char> member;             // per disc: 1 if in the basal layer
   double deposit_start = 0, deposit_end = 0;  // L1's ends (x)

@@ -25,8 +25,9 @@ struct SceneSetup {
   std::vector<int> counts;     // discs per species
 };
 
-// Every derived quantity of a scene. Throws ConfigError for scenes that cannot be built.
-SceneSetup derive_setup(const SceneDef& scene);
+// Every derived quantity of a scene. Throws ConfigError (naming `source`) for scenes that
+// cannot be built, e.g. two explicit discs with the same centre.
+SceneSetup derive_setup(const SceneDef& scene, const std::string& source = "scene");
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads);
 
 // SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1).

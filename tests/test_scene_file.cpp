@@ -1,0 +1,134 @@
+// Scene files: every class of bad input is a ConfigError that names the file, the key and what
+// is allowed; a resolved scene reads back to the same scene.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "runout/errors.hpp"
+#include "runout/io/scene_file.hpp"
+#include "runout/setup.hpp"
+
+namespace runout {
+namespace {
+
+const std::string kGood = R"(
+[species.large]
+diameter = 1.0
+area_share = 0.6
+[species.small]
+diameter = 0.25
+area_share = 0.4
+[avalanche]
+incline_length = 10.0
+)";
+
+// Reads `text` and expects a ConfigError whose message holds every one of `needles`.
+void expect_error(const std::string& text, std::vector<std::string> needles,
+                  std::vector<io::Override> overrides = {}) {
+  try {
+    io::read_scene(text, "bad.toml", overrides);
+    FAIL() << "no error for:\n" << text;
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.toml"), std::string::npos) << what;
+    for (const auto& n : needles) EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' missing in: " << what;
+  }
+}
+
+TEST(SceneFile, ReadsAGoodScene) {
+  const SceneDef s = io::read_scene(kGood, "good.toml");
+  ASSERT_EQ(s.species.size(), 2u);
+  EXPECT_TRUE(s.avalanche.has_value());
+  EXPECT_DOUBLE_EQ(s.avalanche->incline_length, 10.0);
+  EXPECT_DOUBLE_EQ(s.material.restitution, 0.2);  // default
+}
+
+TEST(SceneFile, UnknownKeyIsNamed) {
+  expect_error(kGood + "[material]\nfriciton = 0.5\n", {"material.friciton", "unknown key", "friction"});
+  expect_error(kGood + "colour = 1\n", {"colour", "unknown key"});
+}
+
+TEST(SceneFile, WrongTypeIsNamed) {
+  expect_error(kGood + "[material]\nfriction = \"high\"\n", {"material.friction", "expected a number", "a string"});
+  expect_error(kGood + "[preparation]\nseed = 1.5\n", {"preparation.seed", "expected an integer"});
+  expect_error(kGood + "[[walls]]\npoints = 3\n", {"walls[0].points", "expected an array"});
+}
+
+TEST(SceneFile, OutOfRangeNamesTheRange) {
+  expect_error(kGood + "[material]\nrestitution = 1.5\n", {"material.restitution", "1.5", "(0, 1]"});
+  expect_error(kGood + "[integration]\ndt_fraction = 0\n", {"integration.dt_fraction", "(0, 1]"});
+  expect_error(kGood + "[contact]\ndesign_max_overlap = -1\n", {"contact.design_max_overlap", "(0, 0.5]"});
+}
+
+TEST(SceneFile, BadChoiceListsTheOptions) {
+  expect_error(kGood + "[contact]\nnormal_model = \"hooke\"\n",
+               {"contact.normal_model", "\"hooke\"", "walton_braun", "linear_dashpot", "hertz"});
+}
+
+TEST(SceneFile, MissingSpeciesOrDiameter) {
+  expect_error("[avalanche]\n", {"species", "at least one"});
+  expect_error("[species.a]\narea_share = 1.0\n[avalanche]\n", {"species.a.diameter", "required"});
+}
+
+TEST(SceneFile, AreaSharesMustAddUp) {
+  expect_error("[species.a]\ndiameter = 1.0\narea_share = 0.5\n[avalanche]\n", {"area_share", "add up to 1"});
+}
+
+TEST(SceneFile, UnknownSpeciesInParticle) {
+  expect_error("[species.a]\ndiameter = 1.0\n[species.b]\ndiameter = 0.5\n[[particles]]\nspecies = \"c\"\n",
+               {"particles[0].species", "\"c\"", "\"a\""});
+}
+
+TEST(SceneFile, SyntaxErrorGivesLine) {
+  expect_error("[species.a]\ndiameter = = 1.0\n", {"line 2"});
+}
+
+TEST(SceneFile, NothingToSimulate) {
+  expect_error("[species.a]\ndiameter = 1.0\n", {"nothing to simulate"});
+}
+
+TEST(SceneFile, WallsNeedTwoDistinctPoints) {
+  expect_error("[species.a]\ndiameter = 1.0\n[[walls]]\npoints = [[0.0, 0.0]]\n", {"walls[0].points", "at least two"});
+  expect_error("[species.a]\ndiameter = 1.0\n[[walls]]\npoints = [[0.0, 0.0], [0.0, 0.0]]\n", {"walls[0].points[1]", "zero-length"});
+}
+
+TEST(SceneFile, OverridesApplyAndAreChecked) {
+  const SceneDef s = io::read_scene(kGood, "good.toml", {io::parse_override("contact.normal_model=hertz"),
+                                                         io::parse_override("species.small.diameter=0.12")});
+  EXPECT_EQ(s.contact.normal_model, NormalModel::hertz);  // a bare word is read as a string
+  EXPECT_DOUBLE_EQ(s.species[1].diameter, 0.12);
+  expect_error(kGood, {"material.friction", "[0, 100]"}, {io::parse_override("material.friction=-1")});
+  EXPECT_THROW(io::parse_override("novalue"), ConfigError);
+}
+
+TEST(SceneFile, CoincidentCentresAreRejected) {
+  const std::string text = "[species.a]\ndiameter = 1.0\n[[particles]]\nx = 1.0\ny = 2.0\n[[particles]]\nx = 1.0\ny = 2.0\n";
+  try {
+    derive_setup(io::read_scene(text, "bad.toml"), "bad.toml");
+    FAIL() << "coincident centres accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("particles[1]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("coincident"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFile, ResolvedSceneReadsBackTheSame) {
+  SceneDef s = io::read_scene(kGood, "good.toml", {io::parse_override("material.restitution=0.123456789012345")});
+  s.walls.push_back({"extra", {{0.1, 0.2}, {3.3, 4.4}}, true});
+  const std::string resolved = io::write_scene(s);
+  const SceneDef back = io::read_scene(resolved, "resolved.toml");
+  EXPECT_EQ(io::write_scene(back), resolved);
+  EXPECT_DOUBLE_EQ(back.material.restitution, 0.123456789012345);
+  EXPECT_DOUBLE_EQ(back.walls[0].points[1].second, 4.4);
+}
+
+TEST(SceneFile, ExampleScenesAllRead) {
+  for (const char* name : {"quick", "thesis_8_33_25", "thesis_4_40", "thesis_3_60", "thesis_2_50"}) {
+    const std::string path = std::string(RUNOUT_SOURCE_DIR) + "/examples/" + name + ".toml";
+    EXPECT_NO_THROW(derive_setup(io::read_scene_file(path), path)) << path;
+  }
+  EXPECT_NO_THROW(io::read_scene(io::embedded_quick_scene(), "<embedded>"));
+}
+
+}  // namespace
+}  // namespace runout
