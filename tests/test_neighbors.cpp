@@ -151,3 +151,24 @@ TEST(Determinism, BitIdenticalAcrossSkins) {
 
 }  // namespace
 }  // namespace runout
+
+namespace runout {
+namespace {
+
+// Renumbering moves discs in the arrays; every disc must keep its own size and mass.
+TEST(Renumbering, SettledPileKeepsEachDiscsSize) {
+  SceneDef s = small_pile();
+  s.species[0].spread = s.species[1].spread = 0.0;
+  const SceneSetup setup = derive_setup(s);
+  const World w = build_settled_pile(s, setup, 1);
+  const auto& p = w.particles();
+  ASSERT_GT(w.step_count(), 2000) << "settling must outlast one renumbering";
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double nominal = 0.5 * s.species[p.species[k]].diameter;
+    EXPECT_DOUBLE_EQ(p.radius[k], nominal) << "disc id " << p.id[k];
+    EXPECT_DOUBLE_EQ(p.mass[k], sphere_mass(nominal, s.material.density)) << "disc id " << p.id[k];
+  }
+}
+
+}  // namespace
+}  // namespace runout

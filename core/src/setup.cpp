@@ -185,9 +185,12 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
       const double shortfall = (1.0 - seed_fraction) * std::exp(-t_star / prep.growth_time);
       growing = shortfall > 1e-4;
       const double scale = growing ? 1.0 - shortfall : 1.0;
+      // By id: the world renumbers its discs spatially as they move.
+      const auto& ids = world.particles().id;
       for (size_t k = 0; k < final_radius.size(); ++k) {
-        const double m = sphere_mass(final_radius[k], scene.material.density);
-        world.resize_disc(k, scale * final_radius[k], m, sphere_inertia(m, final_radius[k]));
+        const double rf = final_radius[static_cast<size_t>(ids[k] - 1)];
+        const double m = sphere_mass(rf, scene.material.density);
+        world.resize_disc(k, scale * rf, m, sphere_inertia(m, rf));
       }
     }
     world.step();
