@@ -236,6 +236,7 @@ int bench_command(const BenchOptions& o) {
   const long long warmup = o.warmup_steps > 0 ? o.warmup_steps
                                               : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
   for (long long s = 0; s < warmup; ++s) world.step();
+  const double t_star_start = world.time() / setup.unit_time;
   const StepProfile before = world.profile();
   const auto t0 = Clock::now();
   for (long long s = 0; s < o.steps; ++s) world.step();
@@ -245,7 +246,7 @@ int bench_command(const BenchOptions& o) {
   std::printf("scene: %s\n", scene.name.c_str());
   std::printf("discs: %.0f\n", n);
   std::printf("threads: %d\n", o.threads);
-  std::printf("t_star_start: %.3f\n", (world.time() - secs * 0) / setup.unit_time - o.steps * setup.dt / setup.unit_time);
+  std::printf("t_star_start: %.3f\n", t_star_start);
   std::printf("steps: %lld\n", o.steps);
   std::printf("seconds: %.4f\n", secs);
   std::printf("pairs_listed_per_disc: %.3f\n", world.pairs().size() / n);

@@ -235,7 +235,7 @@ void World::wall_forces() {
   auto& c = wall_contacts_;
   const auto n = static_cast<std::int64_t>(c.size());
   const double dt = settings_.dt;
-#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1 && n > 4096) \
+#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
     schedule(static)
   for (std::int64_t q = 0; q < n; ++q) {
     const std::int32_t i = c.disc[q];
@@ -354,22 +354,26 @@ void World::integrate_symplectic_euler() {
   double* __restrict om = p.omega.data(); double* __restrict angle = p.angle.data();
   const double* __restrict x0 = x_at_rebuild_.data(); const double* __restrict y0 = y_at_rebuild_.data();
   PassResult results[kMaxThreads];
+  double* __restrict ax = p.ax.data(); double* __restrict ay = p.ay.data();
+  double* __restrict alpha = p.alpha.data();
   for_blocks(static_cast<std::int64_t>(p.size()), settings_.threads,
              [&](std::int64_t lo, std::int64_t hi, int t) {
     double max_d2 = 0;
     bool finite = true;
+    // The sums first (scalar, data-dependent lengths), then the update as a plain loop the
+    // compiler vectorises.
+    for (std::int64_t k = lo; k < hi; ++k) sum(k, ax[k], ay[k], alpha[k]);
+#pragma omp simd reduction(max : max_d2) reduction(&& : finite)
     for (std::int64_t k = lo; k < hi; ++k) {
-      double ax, ay, alpha;
-      sum(k, ax, ay, alpha);
-      vx[k] += ax * dt;
-      vy[k] += ay * dt;
-      om[k] += alpha * dt;
+      vx[k] += ax[k] * dt;
+      vy[k] += ay[k] * dt;
+      om[k] += alpha[k] * dt;
       x[k] += vx[k] * dt;
       y[k] += vy[k] * dt;
       angle[k] += om[k] * dt;
       const double ddx = x[k] - x0[k], ddy = y[k] - y0[k];
       max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
-      finite &= std::isfinite(x[k] + y[k] + vx[k] + vy[k] + om[k]);
+      finite = finite && std::isfinite(x[k] + y[k] + vx[k] + vy[k] + om[k]);
     }
     results[t] = {max_d2, finite};
   });
