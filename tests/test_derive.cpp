@@ -56,6 +56,18 @@ TEST(DerivedParameters, MixedPairsDoNotSetTheStep) {
   EXPECT_DOUBLE_EQ(a.dt, b.dt);
 }
 
+TEST(DerivedParameters, AbsentSpeciesDoNotSetTheStep) {
+  // %A_p = 0 has no small discs: the step is that of the large discs alone. tau scales as
+  // sqrt(m / k) with k / m* proportional to 1 / r*, i.e. as sqrt(r): sqrt(8.33) = 2.89 longer.
+  SceneDef only_large;
+  only_large.species = {{"large", 1.0, 0.1, 1.0}};
+  only_large.avalanche = AvalancheDef{};
+  const SceneSetup mono = derive_setup(only_large);
+  const SceneSetup zero_small = derive_setup(thesis(0.12, 0.0));
+  EXPECT_DOUBLE_EQ(zero_small.dt, mono.dt);
+  EXPECT_NEAR(zero_small.dt / derive_setup(thesis(0.12, 0.25)).dt, std::sqrt(1.0 / 0.12), 0.01);
+}
+
 struct CountRow {
   double pct, ratio;
   int large, small;

@@ -127,7 +127,7 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
 }
 
 double minimum_collision_period(const ContactTable& table, std::span<const SpeciesDef> species,
-                                double density, NormalModel /*model*/) {
+                                double density, const std::vector<char>& present) {
   double tau = std::numeric_limits<double>::infinity();
   const int n = table.species_count;
   auto consider = [&](double mass, double radius, const PairCoefficients& c, double ring) {
@@ -139,9 +139,11 @@ double minimum_collision_period(const ContactTable& table, std::span<const Speci
     tau = std::min({tau, tau_trans, tau_rot});
   };
   for (int a = 0; a < n; ++a) {
+    if (!present[a]) continue;
     const double ra = 0.5 * species[a].diameter;
     const double ma = sphere_mass(ra, density);
     for (int b = 0; b < n; ++b) {
+      if (!present[b]) continue;
       const double rb = 0.5 * species[b].diameter;
       // How many b-discs fit around one a-disc: 6 for equal sizes.
       const double ring = std::floor(kPi / std::asin(rb / (ra + rb)) + 1e-9);

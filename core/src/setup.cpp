@@ -50,9 +50,7 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
   SceneSetup s;
   s.table = derive_contact_table(scene.material, scene.contact, scene.species,
                                  scene.integration.gravity);
-  s.tau_min = minimum_collision_period(s.table, scene.species, scene.material.density,
-                                       scene.contact.normal_model);
-  s.dt = scene.integration.dt_fraction * s.tau_min;
+
   s.unit_length = unit_length(scene.species);
   s.unit_time = unit_time(scene.species, scene.integration.gravity);
   for (int k = 0; k < static_cast<int>(scene.species.size()); ++k) {
@@ -88,6 +86,13 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
     s.counts.assign(scene.species.size(), 0);
     for (const auto& p : scene.particles) ++s.counts[p.species];
   }
+  // The step is set by the species present: a %A_p = 0 pile has no small discs to resolve.
+  std::vector<char> present(scene.species.size(), 0);
+  bool any = false;
+  for (std::size_t k = 0; k < present.size(); ++k) any |= (present[k] = s.counts[k] > 0);
+  if (!any) present.assign(present.size(), 1);
+  s.tau_min = minimum_collision_period(s.table, scene.species, scene.material.density, present);
+  s.dt = scene.integration.dt_fraction * s.tau_min;
   return s;
 }
 

@@ -52,10 +52,10 @@ double sphere_inertia(double mass, double radius);      // 2/5 m r^2 (eq. 2.13)
 ContactTable derive_contact_table(const MaterialDef& material, const ContactDef& contact,
                                   std::span<const SpeciesDef> species, double gravity);
 
-// tau_min over all species pairs and walls: translational and rotational periods of a disc in a
-// ring of N_surr neighbours (SPEC §3; N_surr = 6 for equal discs).
+// tau_min over the pairs of species present and their walls: translational and rotational
+// periods of a disc in a ring of N_surr neighbours (SPEC §3; N_surr = 6 for equal discs).
 double minimum_collision_period(const ContactTable& table, std::span<const SpeciesDef> species,
-                                double density, NormalModel model);
+                                double density, const std::vector<char>& present);
 
 // The unit of length is the smallest nominal diameter d; one t* is sqrt(d/g) seconds.
 double unit_length(std::span<const SpeciesDef> species);
