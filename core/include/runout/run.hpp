@@ -26,6 +26,10 @@ struct TimeseriesRow {
   double front_x = 0;         // farthest disc edge, in d
 };
 
+// Translational kinetic energy of the discs that touch at least one other disc (the mass; a
+// lone disc rolling away on the floor is not part of it).
+double mass_kinetic_energy(const World& world);
+
 // Something that wants to see the world at chosen times: frame sinks, dumps, checkpoints.
 class Observer {
  public:
