@@ -1,5 +1,7 @@
 #include "run_command.hpp"
 
+#include "render_cli.hpp"
+
 #include <omp.h>
 
 #include <chrono>
@@ -43,16 +45,6 @@ std::string hex(std::uint64_t v) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
   return buf;
-}
-
-// Key of a run's physics: the scene without its stopping and output settings, so a run can be
-// resumed with a later max_time but never under other physics.
-std::uint64_t run_key(const SceneDef& scene) {
-  SceneDef s = scene;
-  s.rest = RestDef{};
-  s.output = OutputDef{};
-  s.name.clear();
-  return io::fnv1a64(io::write_scene(s));
 }
 
 // Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
@@ -163,7 +155,7 @@ int run_command(const RunOptions& o) {
   std::remove((o.out_dir + "/summary.json").c_str());
 
   const std::string checkpoint_path = o.out_dir + "/checkpoint.bin";
-  const std::uint64_t key = run_key(scene);
+  const std::uint64_t key = io::physics_key(scene);
   PreparedWorld prepared{build_explicit_world(scene, setup, threads)};
   std::optional<RunState> resumed;
   if (o.resume && io::file_exists(checkpoint_path)) {
@@ -190,6 +182,8 @@ int run_command(const RunOptions& o) {
     dumps.emplace(o.out_dir + "/dump");
     run.add_observer(*dumps, {scene.output.dump_every, 0.0, {}});
   }
+  std::unique_ptr<PictureSession> pictures;
+  if (o.pictures.wants_pictures()) pictures = attach_pictures(o.pictures, run, scene, setup, o.out_dir);
   if (!o.quiet) {
     std::fprintf(stderr, "runout: %zu discs, dt = %.3e s (%.0f steps per t*), %d thread%s\n",
                  world.particles().size(), setup.dt, setup.unit_time / setup.dt, threads,
@@ -199,6 +193,10 @@ int run_command(const RunOptions& o) {
     });
   }
   const RunResult result = run.run();
+  if (pictures) {
+    pictures->finish();
+    if (!o.quiet) std::fprintf(stderr, "runout: %s\n", pictures->report().c_str());
+  }
 
   io::SummaryContext ctx;
   ctx.scene_name = scene.name;

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "render_cli.hpp"
+
 namespace runout::app {
 
 struct RunOptions {
@@ -18,6 +20,7 @@ struct RunOptions {
   std::string cache_dir;   // empty: $XDG_CACHE_HOME/runout or ~/.cache/runout
   bool no_cache = false;
   bool quiet = false;
+  PictureOptions pictures;
 };
 
 struct BenchOptions {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "render_cli.hpp"
 #include "run_command.hpp"
 
 int main(int argc, char** argv) {
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   run_cmd->add_flag("--no-cache", run.no_cache, "always settle the pile afresh");
   run_cmd->add_flag("--quiet,-q", run.quiet, "no progress on stderr");
+  runout::app::add_picture_options(run_cmd, run.pictures, true);
 
   runout::app::BenchOptions bench;
   auto* bench_cmd = cli.add_subcommand("bench", "measure particle-steps per second on a flowing pile");
@@ -40,6 +42,25 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
   bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
 
+  runout::app::RenderOptions render;
+  auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
+  render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
+  render_cmd->add_option("-o,--output", render.output, "PNG to write")->required();
+  render_cmd->add_option("--scene", render.scene, "scene (default: scene.resolved.toml beside the checkpoint)")
+      ->check(CLI::ExistingFile);
+  runout::app::add_picture_options(render_cmd, render.picture, false);
+
+  runout::app::CompareOptions compare;
+  auto* compare_cmd = cli.add_subcommand(
+      "compare", "compare two PNGs: exit 0 within tolerance, 1 not, 2 on bad input");
+  compare_cmd->add_option("expected", compare.expected, "reference PNG")->required();
+  compare_cmd->add_option("actual", compare.actual, "PNG to check")->required();
+  compare_cmd->add_option("--tolerance", compare.tolerance, "a pixel differs if a channel differs by more (0-255)")
+      ->check(CLI::Range(0, 255));
+  compare_cmd->add_option("--max-share", compare.max_share, "largest share of differing pixels that still matches")
+      ->check(CLI::Range(0.0, 1.0));
+  compare_cmd->add_option("--diff", compare.diff, "write a diff image (differing pixels red)");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -48,6 +69,8 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return runout::app::run_command(run);
     if (*bench_cmd) return runout::app::bench_command(bench);
+    if (*render_cmd) return runout::app::render_command(render);
+    if (*compare_cmd) return runout::app::compare_command(compare);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "runout: error: %s\n", e.what());
     return 1;

@@ -6,6 +6,8 @@ packages=(
   build-essential cmake
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
+  pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include "runout/derive.hpp"
 
@@ -73,6 +74,29 @@ double basal_spin(const Particles& p, const std::vector<Segment>& segments, Spec
   return n ? sum / n : std::nan("");
 }
 
+std::pair<double, double> deposit_extent(const Particles& p, double bin, double min_fill, int max_gap) {
+  const std::size_t n = p.size();
+  if (n == 0) return {0.0, 0.0};
+  double xmin = p.x[0], xmax = p.x[0];
+  for (std::size_t k = 0; k < n; ++k) { xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]); }
+  const int nbins = std::max(1, static_cast<int>(std::floor((xmax - xmin) / bin)) + 1);
+  std::vector<double> fill(nbins, 0.0);
+  for (std::size_t k = 0; k < n; ++k)
+    fill[std::min(nbins - 1, static_cast<int>((p.x[k] - xmin) / bin))] += p.radius[k] * p.radius[k];
+  const int fullest = static_cast<int>(std::max_element(fill.begin(), fill.end()) - fill.begin());
+  auto counts = [&](int b) { return fill[b] > 0 && fill[b] >= min_fill * fill[fullest]; };
+  auto extend = [&](int from, int step) {
+    int last = from;
+    for (int b = from + step, gap = 0; b >= 0 && b < nbins; b += step) {
+      if (counts(b)) { last = b; gap = 0; }
+      else if (++gap > max_gap) break;
+    }
+    return last;
+  };
+  const int first = extend(fullest, -1), last = extend(fullest, +1);
+  return {xmin + first * bin, xmin + (last + 1) * bin};
+}
+
 BasalLayer basal_layer(const Particles& p, const std::vector<Segment>& segments,
                        SpeciesRoles roles, double large_diameter, double packing) {
   BasalLayer out;
@@ -80,21 +104,8 @@ BasalLayer basal_layer(const Particles& p, const std::vector<Segment>& segments,
   out.member.assign(n, 0);
   if (n == 0) return out;
 
-  // L1: the deposit without its scattered ends. Bins of width D along x; a bin belongs to the
-  // deposit body if its disc area per unit length is at least a tenth of the fullest bin's;
-  // L1 is the unbroken run of such bins around the fullest bin.
-  double xmin = p.x[0], xmax = p.x[0];
-  for (std::size_t k = 0; k < n; ++k) { xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]); }
-  const int nbins = std::max(1, static_cast<int>(std::floor((xmax - xmin) / large_diameter)) + 1);
-  std::vector<double> fill(nbins, 0.0);
-  for (std::size_t k = 0; k < n; ++k)
-    fill[static_cast<int>((p.x[k] - xmin) / large_diameter)] += p.radius[k] * p.radius[k];
-  const int fullest = static_cast<int>(std::max_element(fill.begin(), fill.end()) - fill.begin());
-  int first = fullest, last = fullest;
-  while (first > 0 && fill[first - 1] >= 0.1 * fill[fullest]) --first;
-  while (last + 1 < nbins && fill[last + 1] >= 0.1 * fill[fullest]) ++last;
-  out.deposit_start = xmin + first * large_diameter;
-  out.deposit_end = xmin + (last + 1) * large_diameter;
+  // L1: the deposit without its scattered ends.
+  std::tie(out.deposit_start, out.deposit_end) = deposit_extent(p, large_diameter, 0.1, 0);
 
   // Lower contour: per bin of width D, the bottom edge height of the lowest large disc.
   const double x0 = out.deposit_start;

@@ -138,14 +138,18 @@ bool AvalancheRun::finished() {
   const double total = state_.ep0 > 0 ? translational_energy(p) / state_.ep0 : 0.0;
   if (total > state_.peak_ek) { state_.peak_ek = total; state_.t_star_peak_ek = now; }
   const double ratio = state_.ep0 > 0 ? mass_kinetic_energy(world_) / state_.ep0 : 0.0;
+  const double half_step = 0.5 * setup_.dt / setup_.unit_time;
+  const bool may_stop = now >= min_end_time_ - half_step;
   if (ratio < scene_.rest.ek_threshold) {
     if (state_.below_since < 0) state_.below_since = now;
-    if (now - state_.below_since >= scene_.rest.hold) { at_rest_ = true; return true; }
+    at_rest_ = now - state_.below_since >= scene_.rest.hold;
+    if (at_rest_ && may_stop) return true;
   } else {
     state_.below_since = -1;
+    at_rest_ = false;
   }
-  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - 0.5 * setup_.dt / setup_.unit_time) return true;
-  return now >= scene_.rest.max_time;
+  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - half_step) return true;
+  return now >= std::max(scene_.rest.max_time, min_end_time_);
 }
 
 RunResult AvalancheRun::run() {

@@ -37,6 +37,11 @@ SegregationHeights mean_heights(const Particles& p, const std::vector<Segment>& 
 double basal_spin(const Particles& p, const std::vector<Segment>& segments, SpeciesRoles roles,
                   double unit_time);
 
+// The body of a deposit along x: bins of width `bin`; a bin counts if its disc area is at least
+// `min_fill` of the fullest bin's (0: any disc); the body is the run of counting bins around the
+// fullest one, bridging at most `max_gap` bins that do not count. Returns {x_start, x_end}.
+std::pair<double, double> deposit_extent(const Particles& p, double bin, double min_fill, int max_gap);
+
 // The deposit's basal layer (§4.2.1, eqs. 4.6–4.9): the lowest large disc per bin of width D
 // along x gives a lower contour (its bottom edge); small discs whose centre lies below the
 // contour form the layer. H_layer = pi sum r^2 / (L C) over windows L = L1, 3/4, 1/2, 1/4 L1

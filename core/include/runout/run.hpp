@@ -92,6 +92,8 @@ class AvalancheRun {
   void add_observer(Observer& observer, Schedule schedule);
   // Progress: called about every t* unit with (t*, E_k/Ep0, steps per second).
   void set_progress(std::function<void(double, double, double)> progress) { progress_ = std::move(progress); }
+  // The run goes on at least until this t* even once at rest (the last requested snapshot).
+  void set_min_end_time(double t_star) { min_end_time_ = t_star; }
   RunResult run();
 
   const RunState& state() const { return state_; }
@@ -116,6 +118,7 @@ class AvalancheRun {
   std::vector<Scheduled> observers_;
   std::function<void(double, double, double)> progress_;
   bool at_rest_ = false;
+  double min_end_time_ = 0;
 };
 
 }  // namespace runout

@@ -494,6 +494,14 @@ std::string write_scene(const SceneDef& s) {
   return out.str();
 }
 
+std::uint64_t physics_key(const SceneDef& scene) {
+  SceneDef s = scene;
+  s.rest = RestDef{};
+  s.output = OutputDef{};
+  s.name.clear();
+  return fnv1a64(write_scene(s));
+}
+
 std::string pile_key_text(const SceneDef& s) {
   toml::table root = physics_tables(s, false);
   root.erase("name");

@@ -2,6 +2,7 @@
 // out-of-range value is a ConfigError naming the file, the key and what is allowed.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ std::string write_scene(const SceneDef& scene);
 // The TOML of the parts of a scene that decide the settled pile (material, contact,
 // integration, species, avalanche, preparation): the key of the pile cache.
 std::string pile_key_text(const SceneDef& scene);
+
+// Key of a run's physics: the scene without its name, stopping and output settings, so a run
+// can be resumed with a later max_time but never under other physics (checkpoints).
+std::uint64_t physics_key(const SceneDef& scene);
 
 // The quick pile embedded in the binary (examples/quick.toml).
 const std::string& embedded_quick_scene();

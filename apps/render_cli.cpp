@@ -1,0 +1,197 @@
+#include "render_cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "runout/checkpoint.hpp"
+#include "runout/errors.hpp"
+#include "runout/io/files.hpp"
+#include "runout/io/scene_file.hpp"
+#include "runout/render/recorders.hpp"
+#include "runout/setup.hpp"
+
+namespace runout::app {
+
+bool have_renderer() { return true; }
+
+void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie) {
+  if (with_movie) {
+    cmd->add_option("--movie", o.movie, "write a video of the flow (.mp4: H.264 yuv420p; .mkv also works)");
+    cmd->add_option("--frames", o.frames_dir, "write the movie frames as a PNG sequence into this folder");
+    cmd->add_option("--snapshots", o.snapshots, "PNG snapshots at these t*, e.g. 0,20,40,60,80,100,250");
+    cmd->add_option("--snapshot-dir", o.snapshot_dir, "folder for snapshots (default: --out)");
+    cmd->add_option("--fps", o.fps, "movie frames per second")->check(CLI::Range(1, 240));
+    cmd->add_option("--frame-every", o.frame_every, "t* between movie frames")->check(CLI::Range(1e-3, 1e6));
+    cmd->add_option("--crf", o.crf, "H.264 quality, 0..51 (lower is better)")->check(CLI::Range(0, 51));
+    cmd->add_option("--preset", o.preset, "x264 preset (ultrafast .. veryslow)");
+    cmd->add_flag("--lossless", o.lossless, "lossless H.264 (yuv444p, qp 0; not playable in browsers)");
+  }
+  cmd->add_option("--color", o.color, "species | spin | layer | speed")
+      ->check(CLI::IsMember({"species", "spin", "layer", "speed"}));
+  cmd->add_option("--camera", o.camera, "whole | front | deposit | window")
+      ->check(CLI::IsMember({"whole", "front", "deposit", "window"}));
+  cmd->add_option("--window", o.window, "x0,y0,x1,y1 in metres, for --camera window");
+  cmd->add_option("--size", o.size, "frame size WxH in pixels (odd sizes are rounded up)");
+  cmd->add_option("--front-width", o.front_width, "front camera: window width in D")->check(CLI::Range(1.0, 1e5));
+  cmd->add_option("--spin-limit", o.spin_limit, "spin colours saturate at +-this omega sqrt(d/g)")
+      ->check(CLI::Range(1e-6, 1e6));
+  cmd->add_option("--speed-limit", o.speed_limit, "speed colours saturate at this |v|/sqrt(g d) (0: free-fall speed)")
+      ->check(CLI::Range(0.0, 1e6));
+  cmd->add_flag("--spokes", o.spokes, "draw a spoke showing each disc's rotation");
+  cmd->add_flag("--outlines", o.outlines, "draw a thin darker rim on each disc");
+  cmd->add_flag("--transparent", o.transparent, "PNG with a transparent background");
+  cmd->add_flag("--no-overlays", o.no_overlays, "no legend, colour bar, t* stamp or scale bar");
+  cmd->add_flag("--quads", o.sprites_off, "draw discs as quads instead of point sprites");
+}
+
+std::vector<double> parse_times(const std::string& list) {
+  std::vector<double> out;
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(v) || v < 0)
+      throw std::invalid_argument("--snapshots: \"" + item + "\" is not a time t* >= 0");
+    out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
+
+render::FrameOptions frame_options(const PictureOptions& o) {
+  render::FrameOptions f;
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(o.size);
+  if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
+    throw std::invalid_argument("--size: \"" + o.size + "\" is not WxH with 16 <= W, H <= 8192");
+  if (w % 2 || h % 2) {
+    std::fprintf(stderr, "runout: note: --size %dx%d rounded up to %dx%d (video needs even sizes)\n", w, h,
+                 w + w % 2, h + h % 2);
+    w += w % 2;
+    h += h % 2;
+  }
+  f.width = w;
+  f.height = h;
+  f.color = render::parse_color_mode(o.color);
+  f.camera = render::parse_camera_mode(o.camera);
+  if (f.camera == render::CameraMode::window) {
+    char c1, c2, c3;
+    std::istringstream win(o.window);
+    if (!(win >> f.window[0] >> c1 >> f.window[1] >> c2 >> f.window[2] >> c3 >> f.window[3]) || c1 != ',' ||
+        c2 != ',' || c3 != ',' || f.window[2] <= f.window[0] || f.window[3] <= f.window[1])
+      throw std::invalid_argument("--window: \"" + o.window + "\" is not x0,y0,x1,y1 with x1 > x0 and y1 > y0");
+  }
+  f.front_width = o.front_width;
+  f.spokes = o.spokes;
+  f.outlines = o.outlines;
+  f.transparent = o.transparent;
+  f.overlays = !o.no_overlays;
+  f.spin_limit = o.spin_limit;
+  f.speed_limit = o.speed_limit;
+  f.method = o.sprites_off ? render::DiscMethod::quads : render::DiscMethod::point_sprites;
+  return f;
+}
+
+class Session : public PictureSession {
+ public:
+  Session(const PictureOptions& o, AvalancheRun& run, const SceneDef& scene, const SceneSetup& setup,
+          const std::string& out_dir) {
+    const render::FrameOptions frame = frame_options(o);
+    if (!o.movie.empty() || !o.frames_dir.empty()) {
+      render::VideoOptions video;
+      video.fps = o.fps;
+      video.crf = o.crf;
+      video.preset = o.preset;
+      video.lossless = o.lossless;
+      movie_.emplace(frame, scene, setup, o.movie, video, o.frames_dir);
+      run.add_observer(*movie_, {o.frame_every, 0.0, {}});
+      movie_path_ = o.movie;
+    }
+    if (!o.snapshots.empty()) {
+      const auto times = parse_times(o.snapshots);
+      snapshots_.emplace(frame, scene, setup, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times);
+      run.add_observer(*snapshots_, {0.0, 0.0, times});
+      run.set_min_end_time(times.back());  // the run goes on to the last snapshot
+    }
+  }
+  void finish() override {
+    if (movie_) movie_->finish();
+  }
+  std::string report() const override {
+    std::ostringstream r;
+    if (movie_) {
+      r << movie_->frames() << " movie frames";
+      if (!movie_path_.empty()) r << " in " << movie_path_;
+      r << " (drawing " << static_cast<int>(1000 * movie_->draw_seconds() / std::max(1L, movie_->frames()))
+        << " ms a frame)";
+    }
+    if (snapshots_) r << (movie_ ? "; " : "") << snapshots_->written().size() << " snapshots";
+    return r.str();
+  }
+
+ private:
+  std::optional<render::MovieRecorder> movie_;
+  std::optional<render::SnapshotWriter> snapshots_;
+  std::string movie_path_;
+};
+
+}  // namespace
+
+std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run,
+                                                const SceneDef& scene, const SceneSetup& setup,
+                                                const std::string& out_dir) {
+  return std::make_unique<Session>(o, run, scene, setup, out_dir);
+}
+
+int render_command(const RenderOptions& o) {
+  const std::string scene_path =
+      o.scene.empty() ? (std::filesystem::path(o.checkpoint).parent_path() / "scene.resolved.toml").string() : o.scene;
+  const SceneDef scene = io::read_scene_file(scene_path);
+  const SceneSetup setup = derive_setup(scene, scene_path);
+  World world = build_explicit_world(scene, setup, 1);
+  const std::string bytes = io::read_file(o.checkpoint);
+  decode_checkpoint(bytes, io::physics_key(scene), world, o.checkpoint);
+  const double t_star = world.time() / setup.unit_time;
+  render::FrameMaker maker(frame_options(o.picture), scene, setup);
+  render::write_png(o.output, maker.make(world, t_star), o.picture.transparent);
+  std::fprintf(stderr, "runout: wrote %s (t* = %.2f)\n", o.output.c_str(), t_star);
+  return 0;
+}
+
+int compare_command(const CompareOptions& o) {
+  render::Image expected, actual;
+  try {
+    expected = render::read_png(o.expected);
+    actual = render::read_png(o.actual);
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "runout compare: %s\n", e.what());
+    return 2;
+  }
+  render::CompareOptions opts;
+  opts.pixel_threshold = o.tolerance;
+  opts.max_share = o.max_share;
+  const render::Comparison c = render::compare_images(expected, actual, opts);
+  if (!c.same_size) {
+    std::fprintf(stderr, "runout compare: sizes differ: %dx%d vs %dx%d\n", expected.width, expected.height,
+                 actual.width, actual.height);
+    return 1;
+  }
+  std::printf("differing_pixels: %ld\nshare: %.6f\nrms: %.3f\nmax_difference: %d\nmatch: %s\n",
+              c.differing_pixels, c.share, c.rms, c.max_difference, c.match ? "yes" : "no");
+  if (!o.diff.empty()) render::write_png(o.diff, c.diff);
+  return c.match ? 0 : 1;
+}
+
+}  // namespace runout::app

@@ -1,0 +1,71 @@
+// Command-line options for pictures (runout run, runout render) and the commands that only
+// exist with the renderer (render, compare).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runout/run.hpp"
+
+namespace CLI { class App; }
+
+namespace runout::app {
+
+struct PictureOptions {
+  std::string movie;         // video file (.mp4, .mkv)
+  std::string frames_dir;    // PNG sequence folder
+  std::string snapshots;     // "0,20,40"
+  std::string snapshot_dir;  // default: the output folder
+  std::string color = "species";
+  std::string camera = "whole";
+  std::string window;        // "x0,y0,x1,y1" (m), for --camera window
+  std::string size = "1280x720";
+  int fps = 30;
+  double frame_every = 0.5;  // t* between movie frames
+  int crf = 20;
+  std::string preset = "veryfast";
+  bool lossless = false, spokes = false, outlines = false, transparent = false, no_overlays = false;
+  double spin_limit = 10.0, speed_limit = 0.0, front_width = 50.0;
+  bool sprites_off = false;  // draw discs as quads (for measuring both methods)
+
+  bool wants_pictures() const { return !movie.empty() || !frames_dir.empty() || !snapshots.empty(); }
+};
+
+// Adds the frame options (colour, camera, size, style) to a subcommand; `with_movie` adds the
+// movie, frames and snapshots options too.
+void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie);
+
+// Parses "0,20,40" into sorted times; throws std::invalid_argument with the bad item.
+std::vector<double> parse_times(const std::string& list);
+
+struct RenderOptions {
+  std::string checkpoint;
+  std::string scene;  // default: scene.resolved.toml beside the checkpoint
+  std::string output;
+  PictureOptions picture;
+};
+struct CompareOptions {
+  std::string expected, actual, diff;
+  int tolerance = 24;
+  double max_share = 0.002;
+};
+
+int render_command(const RenderOptions& o);
+int compare_command(const CompareOptions& o);
+
+// The movie and snapshot observers of one run.
+class PictureSession {
+ public:
+  virtual ~PictureSession() = default;
+  virtual void finish() = 0;              // completes the video
+  virtual std::string report() const = 0; // what was written, for stderr
+};
+// Throws (std::exception) on bad options or when the renderer cannot start.
+std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run,
+                                                const SceneDef& scene, const SceneSetup& setup,
+                                                const std::string& out_dir);
+// Whether this binary was built with the renderer.
+bool have_renderer();
+
+}  // namespace runout::app

@@ -1,0 +1,72 @@
+// From a World to a finished frame: colours by species, spin, basal layer or speed; a camera;
+// walls; the colour bar or legend, the t* stamp and a scale bar in units of D (SPEC §8).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "runout/render/gl_renderer.hpp"
+#include "runout/render/text.hpp"
+#include "runout/setup.hpp"
+#include "runout/world.hpp"
+
+namespace runout::render {
+
+enum class ColorMode { species, spin, layer, speed };
+enum class CameraMode { whole, front, deposit, window };
+
+ColorMode parse_color_mode(const std::string& s);    // throws std::invalid_argument
+CameraMode parse_camera_mode(const std::string& s);
+const char* to_string(ColorMode m);
+const char* to_string(CameraMode m);
+
+struct FrameOptions {
+  int width = 1280, height = 720;
+  ColorMode color = ColorMode::species;
+  CameraMode camera = CameraMode::whole;
+  std::array<double, 4> window{0, 0, 0, 0};  // camera window: x0, y0, x1, y1 in metres
+  double front_width = 50.0;   // front camera: window width in large diameters D
+  bool spokes = false;
+  bool outlines = false;
+  bool transparent = false;    // PNG with alpha; videos ignore it
+  bool overlays = true;        // legend or colour bar, t* stamp, scale bar
+  double spin_limit = 10.0;    // |omega sqrt(d/g)| at the ends of the spin map (fixed per movie)
+  double speed_limit = 0.0;    // |v| / sqrt(g d) at the top of viridis; 0: free-fall speed from
+                               // the highest disc of the first frame (fixed per movie)
+  DiscMethod method = DiscMethod::point_sprites;
+};
+
+// Owns an OpenGL context and a font; keeps the camera's state between frames so every frame
+// of one FrameMaker has the same scale (and the front camera moves smoothly).
+class FrameMaker {
+ public:
+  FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup);
+  Image make(const World& world, double t_star);
+  const FrameOptions& options() const { return options_; }
+  // The world window of the last frame.
+  const View& last_view() const { return view_; }
+
+ private:
+  void update_camera(const World& world, double t_star);
+  void colour_discs(const World& world);
+  void draw_overlays(Image& image, double t_star);
+
+  FrameOptions options_;
+  const SceneDef& scene_;
+  const SceneSetup& setup_;
+  GlRenderer gl_;
+  TextRenderer text_;
+  DiscBatch discs_;
+  View view_;
+  bool have_view_ = false;
+  double last_t_star_ = 0;
+  double speed_limit_ = 0;
+};
+
+// World window [x0, x1] x [y0, y1] fitted into a width x height frame with a margin (share of
+// the frame), centred.
+View fit_view(double x0, double y0, double x1, double y1, int width, int height, double margin);
+
+}  // namespace runout::render

@@ -1,0 +1,55 @@
+// Observers that turn a running simulation into pictures with no intermediate files: a movie
+// (video and/or PNG sequence) at a fixed cadence, and snapshots at chosen t*.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runout/render/frame.hpp"
+#include "runout/render/video.hpp"
+#include "runout/run.hpp"
+
+namespace runout::render {
+
+class MovieRecorder : public Observer {
+ public:
+  // `video_path` empty: no video; `png_dir` empty: no PNG sequence.
+  MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+                const std::string& video_path, const VideoOptions& video, const std::string& png_dir);
+  void observe(const World& world, double t_star) override;
+  void finish();  // completes the video file
+  long frames() const { return frames_; }
+  // Seconds spent drawing (GL + overlays) and writing PNGs on the simulation thread.
+  double draw_seconds() const { return draw_seconds_; }
+
+ private:
+  FrameMaker maker_;
+  std::optional<VideoWriter> video_;
+  std::string png_dir_;
+  bool keep_alpha_;
+  long frames_ = 0;
+  double draw_seconds_ = 0;
+};
+
+// Writes DIR/snapshot_t<T>.png for each requested T (the frame is the step nearest T; its stamp
+// shows the actual t*).
+class SnapshotWriter : public Observer {
+ public:
+  SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+                 std::string dir, std::vector<double> times);
+  void observe(const World& world, double t_star) override;
+  const std::vector<double>& times() const { return times_; }
+  std::vector<std::string> written() const { return written_; }
+
+ private:
+  FrameMaker maker_;
+  std::string dir_;
+  std::vector<double> times_;
+  std::vector<std::string> written_;
+};
+
+std::string snapshot_name(double t_star);  // "snapshot_t40.png", "snapshot_t2.5.png"
+
+}  // namespace runout::render

@@ -1,0 +1,40 @@
+// Video through FFmpeg's libraries: H.264 (libx264) in MP4, yuv420p with BT.709 tags so every
+// player shows it right; or a lossless H.264 (yuv444p, qp 0) for archiving. Frames are encoded
+// on a worker thread, overlapped with the simulation; the file appears under its name only
+// when complete (temp file + rename).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "runout/render/image.hpp"
+
+namespace runout::render {
+
+struct VideoOptions {
+  int fps = 30;
+  int crf = 20;                  // x264 constant rate factor, 0..51 (lower = better)
+  std::string preset = "veryfast";
+  bool lossless = false;         // yuv444p, qp 0: exact colours, not playable in browsers
+  int queue_frames = 8;          // frames waiting for the encoder before write() blocks
+};
+
+class VideoWriter {
+ public:
+  // Opens `path` (format from its extension, .mp4 or .mkv) for width x height frames (even
+  // numbers). Throws RenderError with the reason (no libx264, unwritable path, ...).
+  VideoWriter(const std::string& path, int width, int height, const VideoOptions& options);
+  ~VideoWriter();  // abandons an unfinished file (removes the temp file)
+  VideoWriter(const VideoWriter&) = delete;
+  VideoWriter& operator=(const VideoWriter&) = delete;
+
+  void write(Image frame);  // queued; rethrows an encoder error from the worker
+  void finish();            // drains, writes the trailer, renames into place
+  long frames_written() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace runout::render

@@ -1,0 +1,292 @@
+#include "runout/render/frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "runout/measure.hpp"
+#include "runout/render/colormap.hpp"
+
+namespace runout::render {
+
+ColorMode parse_color_mode(const std::string& s) {
+  if (s == "species") return ColorMode::species;
+  if (s == "spin") return ColorMode::spin;
+  if (s == "layer") return ColorMode::layer;
+  if (s == "speed") return ColorMode::speed;
+  throw std::invalid_argument("colour mode \"" + s + "\" is not one of species, spin, layer, speed");
+}
+CameraMode parse_camera_mode(const std::string& s) {
+  if (s == "whole") return CameraMode::whole;
+  if (s == "front") return CameraMode::front;
+  if (s == "deposit") return CameraMode::deposit;
+  if (s == "window") return CameraMode::window;
+  throw std::invalid_argument("camera \"" + s + "\" is not one of whole, front, deposit, window");
+}
+const char* to_string(ColorMode m) {
+  switch (m) {
+    case ColorMode::species: return "species";
+    case ColorMode::spin: return "spin";
+    case ColorMode::layer: return "layer";
+    case ColorMode::speed: return "speed";
+  }
+  return "?";
+}
+const char* to_string(CameraMode m) {
+  switch (m) {
+    case CameraMode::whole: return "whole";
+    case CameraMode::front: return "front";
+    case CameraMode::deposit: return "deposit";
+    case CameraMode::window: return "window";
+  }
+  return "?";
+}
+
+View fit_view(double x0, double y0, double x1, double y1, int width, int height, double margin) {
+  const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
+  const double usable = 1.0 - 2.0 * margin;
+  const double scale = std::min(width * usable / w, height * usable / h);
+  const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  return {cx - 0.5 * width / scale, cy - 0.5 * height / scale, scale};
+}
+
+FrameMaker::FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup)
+    : options_(options), scene_(scene), setup_(setup), gl_(options.width, options.height) {
+  gl_.set_method(options.method);
+}
+
+namespace {
+
+struct Box {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  void add(double x, double y) { x0 = std::min(x0, x); y0 = std::min(y0, y); x1 = std::max(x1, x); y1 = std::max(y1, y); }
+  bool empty() const { return x1 < x0; }
+};
+
+}  // namespace
+
+void FrameMaker::update_camera(const World& world, double t_star) {
+  const auto& p = world.particles();
+  const int W = options_.width, H = options_.height;
+  const double D = setup_.large_diameter;
+  switch (options_.camera) {
+    case CameraMode::whole: {
+      if (have_view_) return;  // fixed for the whole movie
+      Box b;
+      for (const auto& s : world.segments())
+        if (s.active) { b.add(s.a.x(), s.a.y()); b.add(s.b.x(), s.b.y()); }
+      for (std::size_t k = 0; k < p.size(); ++k) { b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k]); b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]); }
+      if (b.empty()) b = {-1, -1, 1, 1};
+      view_ = fit_view(b.x0, b.y0, b.x1, b.y1, W, H, 0.02);
+      break;
+    }
+    case CameraMode::window: {
+      const auto& w = options_.window;
+      view_ = fit_view(w[0], w[1], w[2], w[3], W, H, 0.0);
+      break;
+    }
+    case CameraMode::front: {
+      // A fixed-size window that follows the front: the 98th percentile of x (the few discs
+      // ahead of the mass do not drag it), placed at three quarters of the width; vertically
+      // on the discs in view, but never with their lowest edge above a fifth of the height (a
+      // thin flow on the floor sits low, not mid-frame). Smoothed with a time constant of 3 t*.
+      const double scale = W / (options_.front_width * D);
+      const double half_w = 0.5 * W / scale, half_h = 0.5 * H / scale;
+      double cx = view_.x0 + half_w, cy = view_.y0 + half_h;
+      if (p.size() > 0) {
+        std::vector<double> xs(p.x);
+        const std::size_t at = static_cast<std::size_t>(0.98 * (xs.size() - 1));
+        std::nth_element(xs.begin(), xs.begin() + at, xs.end());
+        const double target_x = xs[at] - 0.5 * half_w;
+        std::vector<double> ys, lows;
+        for (std::size_t k = 0; k < p.size(); ++k)
+          if (std::abs(p.x[k] - target_x) < half_w) { ys.push_back(p.y[k]); lows.push_back(p.y[k] - p.radius[k]); }
+        double target_y = cy;
+        if (!ys.empty()) {
+          std::nth_element(ys.begin(), ys.begin() + ys.size() / 2, ys.end());
+          const double low = *std::min_element(lows.begin(), lows.end());
+          target_y = std::max(ys[ys.size() / 2], low + 0.6 * half_h);
+        }
+        const double follow = have_view_ ? 1.0 - std::exp(-std::max(t_star - last_t_star_, 0.0) / 3.0) : 1.0;
+        cx += follow * (target_x - cx);
+        cy += follow * (target_y - cy);
+        if (!have_view_) { cx = target_x; cy = target_y; }
+      }
+      view_ = {cx - half_w, cy - half_h, scale};
+      break;
+    }
+    case CameraMode::deposit: {
+      // Fits the body of the mass (its scattered ends left out, as for L1); the scale is set by
+      // the first frame and kept, the window recentred on the body.
+      const auto [start, end] = deposit_extent(p, D, 0.0, 1);  // lone discs beyond a gap left out
+      Box b;
+      for (std::size_t k = 0; k < p.size(); ++k)
+        if (p.x[k] >= start && p.x[k] <= end) {
+          b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k]);
+          b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]);
+        }
+      if (b.empty()) b = {-1, -1, 1, 1};
+      const View fitted = fit_view(b.x0, b.y0 - 0.5 * D, b.x1, b.y1, W, H, 0.03);  // the bed shows
+      const double scale = have_view_ ? view_.scale : fitted.scale;
+      const double cx = fitted.x0 + 0.5 * W / fitted.scale, cy = fitted.y0 + 0.5 * H / fitted.scale;
+      view_ = {cx - 0.5 * W / scale, cy - 0.5 * H / scale, scale};
+      break;
+    }
+  }
+  have_view_ = true;
+}
+
+void FrameMaker::colour_discs(const World& world) {
+  const auto& p = world.particles();
+  discs_.clear();
+  std::vector<char> layer;
+  if (options_.color == ColorMode::layer)
+    layer = basal_layer(p, world.segments(), setup_.roles, setup_.large_diameter, 0.7).member;
+  if (options_.color == ColorMode::speed && speed_limit_ <= 0) {
+    // Free fall from the highest disc to the floor, in sqrt(g d): fixed for the movie.
+    double top = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) top = std::max(top, p.y[k]);
+    speed_limit_ = options_.speed_limit > 0 ? options_.speed_limit
+                                            : std::max(1.0, std::sqrt(2.0 * top / setup_.unit_length));
+  }
+  const double sqrt_gd = std::sqrt(scene_.integration.gravity * setup_.unit_length);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const int s = p.species[k];
+    Rgba c;
+    switch (options_.color) {
+      case ColorMode::species:
+        c = s == setup_.largest_species ? palette::kLarge : s == setup_.roles.small ? palette::kSmall : palette::kOther;
+        break;
+      case ColorMode::spin:
+        c = diverging(p.omega[k] * setup_.unit_time / options_.spin_limit);
+        break;
+      case ColorMode::speed:
+        c = viridis(std::hypot(p.vx[k], p.vy[k]) / sqrt_gd / speed_limit_);
+        break;
+      case ColorMode::layer:
+        c = layer[k] ? palette::kSmall : (s == setup_.largest_species ? palette::kMutedLarge : palette::kMutedSmall);
+        break;
+    }
+    discs_.add(p.x[k], p.y[k], p.radius[k], p.angle[k], c);
+  }
+}
+
+namespace {
+
+// 1, 2, 5 times a power of ten, the largest not above `x`.
+double nice_below(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * p <= x) return m * p;
+  return p;
+}
+
+std::string format_number(double v) {
+  char buf[32];
+  if (std::abs(v - std::round(v)) < 1e-9) std::snprintf(buf, sizeof buf, "%.0f", v);
+  else std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+void FrameMaker::draw_overlays(Image& img, double t_star) {
+  const int W = img.width, H = img.height;
+  const int fs = std::max(10, static_cast<int>(std::lround(H / 36.0)));  // font pixel size
+  const int pad = std::max(4, fs / 2);
+  const int line = std::max(1, fs / 9);
+  const Rgba ink = palette::kInk, panel{255, 255, 255, 210};
+  const int asc = text_.ascent(fs);
+
+  // t* stamp, top left.
+  char stamp[64];
+  std::snprintf(stamp, sizeof stamp, "t* = %.1f", t_star);
+  const int stamp_w = text_.width(stamp, fs);
+  img.fill_rect(pad / 2, pad / 2, pad + stamp_w + pad / 2, pad + asc + fs / 3, panel);
+  text_.draw(img, pad, pad + asc, stamp, fs, ink);
+
+  // Scale bar in units of D, bottom left: about an eighth of the width.
+  const double D = setup_.large_diameter;
+  const double px_per_D = D * view_.scale;
+  const double n_D = nice_below(std::max(W / 8.0 / px_per_D, 1e-3));
+  const int bar = static_cast<int>(std::lround(n_D * px_per_D));
+  const std::string label = format_number(n_D) + " D";
+  const int bx = pad, by = H - pad - line;
+  img.fill_rect(pad / 2, by - asc - fs / 2 - line, bx + std::max(bar, text_.width(label, fs)) + pad / 2, H - pad / 2, panel);
+  img.fill_rect(bx, by, bx + bar, by + line + 1, ink);
+  img.fill_rect(bx, by - fs / 3, bx + line + 1, by + line + 1, ink);
+  img.fill_rect(bx + bar - line - 1, by - fs / 3, bx + bar, by + line + 1, ink);
+  text_.draw(img, bx, by - fs / 3 - line - 1, label, fs, ink);
+
+  // Legend or colour bar, top right.
+  if (options_.color == ColorMode::spin || options_.color == ColorMode::speed) {
+    const bool spin = options_.color == ColorMode::spin;
+    const int bw = std::max(60, W / 5), bh = std::max(6, fs * 2 / 3);
+    const int x1 = W - pad, x0 = x1 - bw;
+    const std::string title = spin ? "ω √(d/g)" : "|v| / √(g d)";
+    const double lo = spin ? -options_.spin_limit : 0.0, hi = spin ? options_.spin_limit : speed_limit_;
+    const int y_title = pad + asc, y_bar = y_title + fs / 3, y_labels = y_bar + bh + asc + 2;
+    img.fill_rect(x0 - pad / 2, pad / 2, W - pad / 2, y_labels + fs / 3, panel);
+    text_.draw(img, x0 + (bw - text_.width(title, fs)) / 2, y_title, title, fs, ink);
+    for (int x = 0; x < bw; ++x) {
+      const double t = (x + 0.5) / bw;
+      const Rgba c = spin ? diverging(2 * t - 1) : viridis(t);
+      img.fill_rect(x0 + x, y_bar, x0 + x + 1, y_bar + bh, c);
+    }
+    // End labels inside the bar's span; a true minus sign.
+    const std::string l0 = (lo < 0 ? "\u2212" : "") + format_number(std::abs(lo)), l1 = format_number(hi);
+    text_.draw(img, x0, y_labels, l0, fs, ink);
+    text_.draw(img, x1 - text_.width(l1, fs), y_labels, l1, fs, ink);
+    if (spin) text_.draw(img, x0 + bw / 2 - text_.width("0", fs) / 2, y_labels, "0", fs, ink);
+  } else {
+    std::vector<std::pair<Rgba, std::string>> entries;
+    char buf[96];
+    if (options_.color == ColorMode::species) {
+      for (std::size_t s = 0; s < scene_.species.size(); ++s) {
+        if (setup_.counts[s] == 0) continue;
+        const int si = static_cast<int>(s);
+        std::snprintf(buf, sizeof buf, "%s, %s = %s m", scene_.species[s].name.c_str(),
+                      si == setup_.largest_species ? "D" : "d", format_number(scene_.species[s].diameter).c_str());
+        entries.push_back({si == setup_.largest_species ? palette::kLarge : si == setup_.roles.small ? palette::kSmall : palette::kOther, buf});
+      }
+    } else {
+      entries = {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"}, {palette::kMutedLarge, "large"}};
+    }
+    int widest = 0;
+    for (const auto& e : entries) widest = std::max(widest, text_.width(e.second, fs));
+    const int row = fs + fs / 3, sw = fs;  // swatch size
+    const int x0 = W - pad - widest - sw - pad / 2;
+    img.fill_rect(x0 - pad / 2, pad / 2, W - pad / 2, pad + row * static_cast<int>(entries.size()), panel);
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      const int y = pad + static_cast<int>(k) * row;
+      // A small anti-aliased disc as the swatch.
+      const double cx = x0 + sw / 2.0, cy = y + sw / 2.0, r = sw * 0.42;
+      for (int py = y; py < y + sw; ++py)
+        for (int px = x0; px < x0 + sw; ++px)
+          img.blend(px, py, entries[k].first, std::clamp(r - std::hypot(px + 0.5 - cx, py + 0.5 - cy) + 0.5, 0.0, 1.0));
+      text_.draw(img, x0 + sw + pad / 2, y + asc - (asc - sw) / 2 - 1, entries[k].second, fs, ink);
+    }
+  }
+}
+
+Image FrameMaker::make(const World& world, double t_star) {
+  update_camera(world, t_star);
+  colour_discs(world);
+  std::vector<SegmentLine> walls;
+  for (const auto& s : world.segments())
+    if (s.active) walls.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
+  DrawStyle style;
+  if (options_.transparent) style.background.a = 0;
+  // Outlines and spokes scale with the drawn size of a small disc.
+  const double small_px = setup_.unit_length * 0.5 * view_.scale;
+  style.outline_px = options_.outlines ? std::clamp(0.12 * small_px, 0.6, 3.0) : 0.0;
+  style.spokes = options_.spokes;
+  style.wall_half_width_px = std::max(1.0, options_.height / 480.0);
+  Image img = gl_.draw(view_, discs_, walls, style);
+  if (options_.overlays) draw_overlays(img, t_star);
+  last_t_star_ = t_star;
+  return img;
+}
+
+}  // namespace runout::render

@@ -1,0 +1,225 @@
+#define GL_GLEXT_PROTOTYPES 1
+#include "runout/render/gl_renderer.hpp"
+
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "shaders.inc"  // kDiscVert, kDiscFrag, kSegmentVert, kSegmentFrag (from shaders/)
+
+namespace runout::render {
+
+namespace {
+
+// Discs whose centre is outside the viewport would be culled whole as point sprites, so the
+// drawing surface extends this far beyond the frame on every side (shared notes).
+constexpr int kGuard = 16;
+constexpr float kMaxPointSize = 255.0f;
+
+GLuint compile(GLenum type, const char* source, const char* name) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    throw RenderError(std::string("OpenGL: shader ") + name + " does not compile: " + log);
+  }
+  return s;
+}
+
+GLuint link(const char* vert, const char* frag, const char* name) {
+  const GLuint p = glCreateProgram();
+  const GLuint v = compile(GL_VERTEX_SHADER, vert, name), f = compile(GL_FRAGMENT_SHADER, frag, name);
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    throw RenderError(std::string("OpenGL: program ") + name + " does not link: " + log);
+  }
+  return p;
+}
+
+}  // namespace
+
+struct GlRenderer::Impl {
+  OSMesaContext context = nullptr;
+  std::vector<std::uint8_t> surface;  // (w + 2 guard) x (h + 2 guard) RGBA, top row first
+  int surface_w = 0, surface_h = 0;
+  GLuint disc_program = 0, segment_program = 0;
+  GLuint vao = 0, disc_buffers[5] = {}, quad_corner_buffer = 0, segment_buffer = 0;
+  std::vector<float> scratch;
+
+  void make_current() {
+    if (!OSMesaMakeCurrent(context, surface.data(), GL_UNSIGNED_BYTE, surface_w, surface_h))
+      throw RenderError("OpenGL: OSMesaMakeCurrent failed");
+    OSMesaPixelStore(OSMESA_Y_UP, 0);  // rows top to bottom in `surface`, at no cost
+  }
+};
+
+GlRenderer::GlRenderer(int width, int height) : impl_(std::make_unique<Impl>()), width_(width), height_(height) {
+  if (width <= 0 || height <= 0 || width > 8192 || height > 8192)
+    throw RenderError("frame size " + std::to_string(width) + "x" + std::to_string(height) +
+                      " is outside 1..8192");
+  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
+                         OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  auto& m = *impl_;
+  m.context = OSMesaCreateContextAttribs(attribs, nullptr);
+  if (!m.context)
+    throw RenderError("OpenGL: cannot create an OSMesa core-profile 3.3 context "
+                      "(is libosmesa6 installed and Mesa 17 or newer?)");
+  m.surface_w = width + 2 * kGuard;
+  m.surface_h = height + 2 * kGuard;
+  m.surface.assign(static_cast<std::size_t>(m.surface_w) * m.surface_h * 4, 0);
+  m.make_current();
+  m.disc_program = link(kDiscVert, kDiscFrag, "disc");
+  m.segment_program = link(kSegmentVert, kSegmentFrag, "segment");
+  glGenVertexArrays(1, &m.vao);
+  glGenBuffers(5, m.disc_buffers);
+  glGenBuffers(1, &m.quad_corner_buffer);
+  glGenBuffers(1, &m.segment_buffer);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied alpha
+}
+
+GlRenderer::~GlRenderer() {
+  if (impl_ && impl_->context) OSMesaDestroyContext(impl_->context);
+}
+
+Image GlRenderer::draw(const View& view, const DiscBatch& discs,
+                       const std::vector<SegmentLine>& walls, const DrawStyle& style) {
+  auto& m = *impl_;
+  m.make_current();
+  glViewport(0, 0, m.surface_w, m.surface_h);
+  const float a = style.background.a / 255.0f;
+  glClearColor(style.background.r / 255.0f * a, style.background.g / 255.0f * a,
+               style.background.b / 255.0f * a, a);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glBindVertexArray(m.vao);
+
+  // World point at the surface's lower-left pixel, guard band included.
+  const float origin[2] = {static_cast<float>(view.x0 - kGuard / view.scale),
+                           static_cast<float>(view.y0 - kGuard / view.scale)};
+  const float viewport[2] = {static_cast<float>(m.surface_w), static_cast<float>(m.surface_h)};
+  const float scale = static_cast<float>(view.scale);
+
+  // ---- walls ----
+  if (!walls.empty()) {
+    const double hw = style.wall_half_width_px, margin = hw + 1.0;
+    m.scratch.clear();
+    for (const auto& s : walls) {
+      double dx = s.bx - s.ax, dy = s.by - s.ay;
+      const double len = std::hypot(dx, dy);
+      if (len <= 0) continue;
+      dx /= len; dy /= len;
+      const double ex = dx * hw / view.scale, ey = dy * hw / view.scale;  // square caps
+      const double nx = -dy * margin / view.scale, ny = dx * margin / view.scale;
+      const double ax = s.ax - ex, ay = s.ay - ey, bx = s.bx + ex, by = s.by + ey;
+      const double v[6][3] = {{ax + nx, ay + ny, margin}, {ax - nx, ay - ny, -margin}, {bx + nx, by + ny, margin},
+                              {bx + nx, by + ny, margin}, {ax - nx, ay - ny, -margin}, {bx - nx, by - ny, -margin}};
+      for (const auto& p : v)
+        for (double c : p) m.scratch.push_back(static_cast<float>(c));
+    }
+    glUseProgram(m.segment_program);
+    glUniform2fv(glGetUniformLocation(m.segment_program, "u_origin"), 1, origin);
+    glUniform1f(glGetUniformLocation(m.segment_program, "u_scale"), scale);
+    glUniform2fv(glGetUniformLocation(m.segment_program, "u_viewport"), 1, viewport);
+    glUniform1f(glGetUniformLocation(m.segment_program, "u_half_width_px"), static_cast<float>(hw));
+    glUniform4f(glGetUniformLocation(m.segment_program, "u_colour"), style.wall.r / 255.0f,
+                style.wall.g / 255.0f, style.wall.b / 255.0f, style.wall.a / 255.0f);
+    for (GLuint k = 0; k < 5; ++k) glDisableVertexAttribArray(k);
+    glBindBuffer(GL_ARRAY_BUFFER, m.segment_buffer);
+    glBufferData(GL_ARRAY_BUFFER, m.scratch.size() * sizeof(float), m.scratch.data(), GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 3 * sizeof(float), reinterpret_cast<void*>(2 * sizeof(float)));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m.scratch.size() / 3));
+  }
+
+  // ---- discs ----
+  if (discs.size() > 0) {
+    glUseProgram(m.disc_program);
+    glUniform2fv(glGetUniformLocation(m.disc_program, "u_origin"), 1, origin);
+    glUniform1f(glGetUniformLocation(m.disc_program, "u_scale"), scale);
+    glUniform2fv(glGetUniformLocation(m.disc_program, "u_viewport"), 1, viewport);
+    glUniform1f(glGetUniformLocation(m.disc_program, "u_outline_px"), static_cast<float>(style.outline_px));
+    glUniform1i(glGetUniformLocation(m.disc_program, "u_spokes"), style.spokes ? 1 : 0);
+    glUniform3f(glGetUniformLocation(m.disc_program, "u_ink"), style.ink.r / 255.0f, style.ink.g / 255.0f,
+                style.ink.b / 255.0f);
+    float max_radius = 0;
+    for (float r : discs.radius) max_radius = std::max(max_radius, r);
+    const bool sprites = method_ == DiscMethod::point_sprites &&
+                         2.0f * (max_radius * scale + 1.0f) <= kMaxPointSize;
+    glUniform1i(glGetUniformLocation(m.disc_program, "u_sprites"), sprites ? 1 : 0);
+    const std::size_t n = discs.size();
+    const int repeat = sprites ? 1 : 6;  // a quad is two triangles
+    auto upload = [&](GLuint index, GLuint buffer, const void* data, std::size_t bytes_per, int comps,
+                      GLenum type, GLboolean normalise) {
+      glBindBuffer(GL_ARRAY_BUFFER, buffer);
+      if (repeat == 1) {
+        glBufferData(GL_ARRAY_BUFFER, n * bytes_per, data, GL_STREAM_DRAW);
+      } else {
+        std::vector<std::uint8_t> expanded(n * bytes_per * repeat);
+        const auto* src = static_cast<const std::uint8_t*>(data);
+        for (std::size_t k = 0; k < n; ++k)
+          for (int r = 0; r < repeat; ++r) std::memcpy(&expanded[(k * repeat + r) * bytes_per], &src[k * bytes_per], bytes_per);
+        glBufferData(GL_ARRAY_BUFFER, expanded.size(), expanded.data(), GL_STREAM_DRAW);
+      }
+      glEnableVertexAttribArray(index);
+      glVertexAttribPointer(index, comps, type, normalise, 0, nullptr);
+    };
+    m.scratch.resize(2 * n);
+    for (std::size_t k = 0; k < n; ++k) { m.scratch[2 * k] = discs.x[k]; m.scratch[2 * k + 1] = discs.y[k]; }
+    upload(0, m.disc_buffers[0], m.scratch.data(), 2 * sizeof(float), 2, GL_FLOAT, GL_FALSE);
+    upload(1, m.disc_buffers[1], discs.radius.data(), sizeof(float), 1, GL_FLOAT, GL_FALSE);
+    upload(2, m.disc_buffers[2], discs.colour.data(), 4, 4, GL_UNSIGNED_BYTE, GL_TRUE);
+    upload(3, m.disc_buffers[3], discs.angle.data(), sizeof(float), 1, GL_FLOAT, GL_FALSE);
+    if (sprites) {
+      glDisableVertexAttribArray(4);
+      glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
+    } else {
+      static constexpr float kCorners[12] = {-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1};
+      std::vector<float> corners(12 * n);
+      for (std::size_t k = 0; k < n; ++k) std::memcpy(&corners[12 * k], kCorners, sizeof kCorners);
+      glBindBuffer(GL_ARRAY_BUFFER, m.quad_corner_buffer);
+      glBufferData(GL_ARRAY_BUFFER, corners.size() * sizeof(float), corners.data(), GL_STREAM_DRAW);
+      glEnableVertexAttribArray(4);
+      glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * n));
+    }
+  }
+  glFinish();  // OSMesa copies the frame into `surface` here
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR)
+    throw RenderError("OpenGL error " + std::to_string(err) + " while drawing a frame");
+
+  // The frame is the surface without its guard band; un-premultiply translucent pixels.
+  Image out(width_, height_);
+  for (int y = 0; y < height_; ++y) {
+    const std::uint8_t* src = &m.surface[(static_cast<std::size_t>(y + kGuard) * m.surface_w + kGuard) * 4];
+    std::uint8_t* dst = &out.rgba[static_cast<std::size_t>(y) * width_ * 4];
+    std::memcpy(dst, src, static_cast<std::size_t>(width_) * 4);
+    if (style.background.a < 255)
+      for (int x = 0; x < width_; ++x) {
+        const int alpha = dst[4 * x + 3];
+        if (alpha > 0 && alpha < 255)
+          for (int c = 0; c < 3; ++c) dst[4 * x + c] = static_cast<std::uint8_t>(std::min(255, (dst[4 * x + c] * 255 + alpha / 2) / alpha));
+      }
+  }
+  return out;
+}
+
+}  // namespace runout::render

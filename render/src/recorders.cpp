@@ -1,0 +1,59 @@
+#include "runout/render/recorders.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "runout/io/files.hpp"
+
+namespace runout::render {
+
+MovieRecorder::MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+                             const std::string& video_path, const VideoOptions& video,
+                             const std::string& png_dir)
+    : maker_(frame, scene, setup), png_dir_(png_dir), keep_alpha_(frame.transparent) {
+  if (!video_path.empty()) video_.emplace(video_path, frame.width, frame.height, video);
+  if (!png_dir_.empty()) io::make_directories(png_dir_);
+}
+
+void MovieRecorder::observe(const World& world, double t_star) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Image img = maker_.make(world, t_star);
+  if (!png_dir_.empty()) {
+    char name[48];
+    std::snprintf(name, sizeof name, "/frame_%06ld.png", frames_);
+    write_png(png_dir_ + name, img, keep_alpha_);
+  }
+  draw_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (video_) video_->write(std::move(img));
+  ++frames_;
+}
+
+void MovieRecorder::finish() {
+  if (video_) video_->finish();
+}
+
+std::string snapshot_name(double t_star) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "snapshot_t%g.png", t_star);
+  return buf;
+}
+
+SnapshotWriter::SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+                               std::string dir, std::vector<double> times)
+    : maker_(frame, scene, setup), dir_(std::move(dir)), times_(std::move(times)) {
+  io::make_directories(dir_);
+}
+
+void SnapshotWriter::observe(const World& world, double t_star) {
+  // The requested time this frame stands for: the nearest one.
+  double requested = t_star, best = std::numeric_limits<double>::infinity();
+  for (double t : times_)
+    if (std::abs(t - t_star) < best) { best = std::abs(t - t_star); requested = t; }
+  const std::string path = dir_ + "/" + snapshot_name(requested);
+  write_png(path, maker_.make(world, t_star), maker_.options().transparent);
+  written_.push_back(path);
+}
+
+}  // namespace runout::render

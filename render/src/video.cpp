@@ -1,0 +1,225 @@
+#include "runout/render/video.hpp"
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/opt.h>
+#include <libswscale/swscale.h>
+}
+
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "runout/render/gl_renderer.hpp"
+
+namespace runout::render {
+
+namespace {
+
+std::string av_error(int code) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {};
+  av_strerror(code, buf, sizeof buf);
+  return buf;
+}
+
+}  // namespace
+
+struct VideoWriter::Impl {
+  std::string path, temp_path;
+  int width = 0, height = 0;
+  VideoOptions options;
+  AVFormatContext* format = nullptr;
+  AVCodecContext* codec = nullptr;
+  AVStream* stream = nullptr;
+  SwsContext* sws = nullptr;
+  AVFrame* frame = nullptr;
+  AVPacket* packet = nullptr;
+  long next_pts = 0;
+
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<Image> queue;
+  bool closing = false, done = false, abandon = false;
+  std::exception_ptr error;
+  std::thread worker;
+
+  ~Impl() {
+    if (sws) sws_freeContext(sws);
+    if (frame) av_frame_free(&frame);
+    if (packet) av_packet_free(&packet);
+    if (codec) avcodec_free_context(&codec);
+    if (format) {
+      if (format->pb) avio_closep(&format->pb);
+      avformat_free_context(format);
+    }
+  }
+
+  void drain_packets() {
+    for (;;) {
+      const int r = avcodec_receive_packet(codec, packet);
+      if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
+      if (r < 0) throw RenderError("video: encoding failed: " + av_error(r));
+      av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
+      packet->stream_index = stream->index;
+      const int w = av_interleaved_write_frame(format, packet);
+      if (w < 0) throw RenderError("video: cannot write " + path + ": " + av_error(w));
+    }
+  }
+
+  void encode(const Image& image) {
+    if (av_frame_make_writable(frame) < 0) throw RenderError("video: out of memory");
+    const std::uint8_t* src[1] = {image.rgba.data()};
+    const int stride[1] = {image.width * 4};
+    sws_scale(sws, src, stride, 0, height, frame->data, frame->linesize);
+    frame->pts = next_pts++;
+    const int r = avcodec_send_frame(codec, frame);
+    if (r < 0) throw RenderError("video: encoding failed: " + av_error(r));
+    drain_packets();
+  }
+
+  void run() {
+    try {
+      for (;;) {
+        Image image;
+        {
+          std::unique_lock lock(mutex);
+          changed.wait(lock, [&] { return !queue.empty() || closing; });
+          if (queue.empty()) break;
+          image = std::move(queue.front());
+          queue.pop_front();
+        }
+        changed.notify_all();
+        encode(image);
+      }
+      bool abandoned;
+      {
+        std::lock_guard lock(mutex);
+        abandoned = abandon;
+      }
+      if (abandoned) throw RenderError("video: abandoned");
+      avcodec_send_frame(codec, nullptr);  // flush
+      drain_packets();
+      const int t = av_write_trailer(format);
+      if (t < 0) throw RenderError("video: cannot finish " + path + ": " + av_error(t));
+      avio_closep(&format->pb);
+      if (std::rename(temp_path.c_str(), path.c_str()) != 0)
+        throw RenderError("video: cannot move the finished file to " + path);
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      error = std::current_exception();
+      queue.clear();
+    }
+    std::lock_guard lock(mutex);
+    done = true;
+    changed.notify_all();
+  }
+};
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, const VideoOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  auto& m = *impl_;
+  if (width % 2 || height % 2)
+    throw RenderError("video: frame size must be even for yuv420p (got " + std::to_string(width) + "x" +
+                      std::to_string(height) + ")");
+  if (options.fps < 1 || options.fps > 240) throw RenderError("video: fps must be in [1, 240]");
+  if (options.crf < 0 || options.crf > 51) throw RenderError("video: crf must be in [0, 51]");
+  m.path = path;
+  m.temp_path = path + ".part";
+  m.width = width;
+  m.height = height;
+  m.options = options;
+
+  av_log_set_level(AV_LOG_ERROR);  // x264's statistics are not for the user's terminal
+  const AVOutputFormat* guessed = av_guess_format(nullptr, path.c_str(), nullptr);
+  if (!guessed) throw RenderError("video: cannot tell the container from " + path + " (use .mp4 or .mkv)");
+  if (avformat_alloc_output_context2(&m.format, guessed, nullptr, m.temp_path.c_str()) < 0)
+    throw RenderError("video: cannot create " + path);
+  const AVCodec* encoder = avcodec_find_encoder_by_name("libx264");
+  if (!encoder) throw RenderError("video: this FFmpeg has no libx264 encoder");
+  m.stream = avformat_new_stream(m.format, nullptr);
+  m.codec = avcodec_alloc_context3(encoder);
+  if (!m.stream || !m.codec) throw RenderError("video: out of memory");
+  m.codec->width = width;
+  m.codec->height = height;
+  m.codec->time_base = AVRational{1, options.fps};
+  m.codec->framerate = AVRational{options.fps, 1};
+  m.codec->pix_fmt = options.lossless ? AV_PIX_FMT_YUV444P : AV_PIX_FMT_YUV420P;
+  // Tag the stream BT.709 (HD) and limited range, matching the conversion below.
+  m.codec->colorspace = AVCOL_SPC_BT709;
+  m.codec->color_primaries = AVCOL_PRI_BT709;
+  m.codec->color_trc = AVCOL_TRC_BT709;
+  m.codec->color_range = AVCOL_RANGE_MPEG;
+  m.codec->thread_count = 1;  // one encoder thread beside the simulation
+  if (m.format->oformat->flags & AVFMT_GLOBALHEADER) m.codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  AVDictionary* opts = nullptr;
+  av_dict_set(&opts, "preset", options.preset.c_str(), 0);
+  if (options.lossless) av_dict_set(&opts, "qp", "0", 0);
+  else av_dict_set(&opts, "crf", std::to_string(options.crf).c_str(), 0);
+  const int opened = avcodec_open2(m.codec, encoder, &opts);
+  av_dict_free(&opts);
+  if (opened < 0) throw RenderError("video: libx264 refused the settings (preset \"" + options.preset + "\"): " + av_error(opened));
+  avcodec_parameters_from_context(m.stream->codecpar, m.codec);
+  m.stream->time_base = m.codec->time_base;
+  if (const int r = avio_open(&m.format->pb, m.temp_path.c_str(), AVIO_FLAG_WRITE); r < 0)
+    throw RenderError("video: cannot write " + path + ": " + av_error(r));
+  if (const int r = avformat_write_header(m.format, nullptr); r < 0)
+    throw RenderError("video: cannot write " + path + ": " + av_error(r));
+
+  m.sws = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, m.codec->pix_fmt,
+                         SWS_BICUBIC | SWS_ACCURATE_RND, nullptr, nullptr, nullptr);
+  if (!m.sws) throw RenderError("video: no RGBA to YUV conversion");
+  sws_setColorspaceDetails(m.sws, sws_getCoefficients(SWS_CS_ITU709), 1, sws_getCoefficients(SWS_CS_ITU709), 0, 0,
+                           1 << 16, 1 << 16);
+  m.frame = av_frame_alloc();
+  m.packet = av_packet_alloc();
+  m.frame->format = m.codec->pix_fmt;
+  m.frame->width = width;
+  m.frame->height = height;
+  if (!m.frame || !m.packet || av_frame_get_buffer(m.frame, 0) < 0) throw RenderError("video: out of memory");
+  m.worker = std::thread([&m] { m.run(); });
+}
+
+VideoWriter::~VideoWriter() {
+  auto& m = *impl_;
+  if (m.worker.joinable()) {
+    {  // never finished: not a whole movie, so no file under its name
+      std::lock_guard lock(m.mutex);
+      m.queue.clear();
+      m.closing = true;
+      m.abandon = true;
+    }
+    m.changed.notify_all();
+    m.worker.join();
+  }
+  std::remove(m.temp_path.c_str());
+}
+
+void VideoWriter::write(Image frame) {
+  auto& m = *impl_;
+  if (frame.width != m.width || frame.height != m.height) throw RenderError("video: frame size changed");
+  std::unique_lock lock(m.mutex);
+  m.changed.wait(lock, [&] { return static_cast<int>(m.queue.size()) < m.options.queue_frames || m.done; });
+  if (m.error) std::rethrow_exception(m.error);
+  m.queue.push_back(std::move(frame));
+  lock.unlock();
+  m.changed.notify_all();
+}
+
+void VideoWriter::finish() {
+  auto& m = *impl_;
+  {
+    std::lock_guard lock(m.mutex);
+    m.closing = true;
+  }
+  m.changed.notify_all();
+  if (m.worker.joinable()) m.worker.join();
+  if (m.error) std::rethrow_exception(m.error);
+}
+
+long VideoWriter::frames_written() const { return impl_->next_pts; }
+
+}  // namespace runout::render

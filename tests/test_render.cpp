@@ -1,0 +1,211 @@
+// The renderer: drawn facts checked against numbers worked out independently (a disc's colour
+// at its centre, its area against pi r^2), golden frames for every colour mode, camera and
+// style (a tolerant comparison; the diff is written on failure), and `runout compare`.
+//
+// Regenerate the goldens on purpose, after looking at them:
+//   RUNOUT_UPDATE_GOLDENS=1 build/tests/test_render --gtest_filter='Golden*'
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "runout/render/frame.hpp"
+#include "runout/render/gl_renderer.hpp"
+#include "runout/render/image.hpp"
+#include "runout/setup.hpp"
+#include "test_helpers.hpp"
+
+namespace runout {
+namespace {
+
+using namespace render;
+
+// ---- drawn facts ----
+
+class DiscFacts : public ::testing::TestWithParam<DiscMethod> {};
+
+TEST_P(DiscFacts, CentrePixelHasTheDiscColourAndAreaIsPiRSquared) {
+  GlRenderer gl(200, 160);
+  gl.set_method(GetParam());
+  DiscBatch discs;
+  const Rgba colour{213, 94, 0, 255};
+  // One metre is 10 pixels; a disc of radius 4 m is 40 px, centred on pixel (100, 80).
+  const View view{0.0, 0.0, 10.0};
+  discs.add(10.0, 8.0, 4.0, 0.0, colour);
+  DrawStyle style;
+  style.background = {255, 255, 255, 0};  // transparent: alpha is the coverage
+  const Image img = gl.draw(view, discs, {}, style);
+  const Rgba centre = img.at(100, 80);
+  EXPECT_EQ(centre, colour);
+  double area = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) area += img.at(x, y).a / 255.0;
+  const double expected = kPi * 40.0 * 40.0;
+  EXPECT_NEAR(area, expected, 0.02 * expected);
+  EXPECT_EQ(img.at(100, 80 - 45).a, 0) << "nothing beyond the edge";
+  // Up is up: a disc placed higher in the world is higher in the image (smaller row).
+  DiscBatch high;
+  high.add(10.0, 12.0, 1.0, 0.0, colour);
+  const Image img2 = gl.draw(view, high, {}, style);
+  EXPECT_EQ(img2.at(100, 40), colour);
+  EXPECT_EQ(img2.at(100, 120).a, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothMethods, DiscFacts,
+                         ::testing::Values(DiscMethod::point_sprites, DiscMethod::quads));
+
+TEST(DiscFacts, SpritesAndQuadsAgree) {
+  GlRenderer gl(160, 90);
+  DiscBatch discs;
+  for (int k = 0; k < 20; ++k) discs.add(1.0 + 0.7 * k, 4.0 + std::sin(k), 0.3 + 0.05 * (k % 4), 0.3 * k, {0, 114, 178, 255});
+  const View view{0.0, 0.0, 10.0};
+  DrawStyle style;
+  style.spokes = true;
+  style.outline_px = 1.0;
+  gl.set_method(DiscMethod::point_sprites);
+  const Image a = gl.draw(view, discs, {{0, 1, 16, 1}}, style);
+  gl.set_method(DiscMethod::quads);
+  const Image b = gl.draw(view, discs, {{0, 1, 16, 1}}, style);
+  CompareOptions tight;
+  tight.pixel_threshold = 4;  // the two rasterise the same analytic edge
+  tight.max_share = 0.001;
+  EXPECT_TRUE(compare_images(a, b, tight).match);
+}
+
+TEST(DiscFacts, DiscCentredOutsideTheFrameStillShowsItsEdge) {
+  GlRenderer gl(100, 100);
+  DiscBatch discs;
+  discs.add(-0.5, 5.0, 1.0, 0.0, {0, 0, 0, 255});  // centre 5 px left of the frame, radius 10 px
+  const Image img = gl.draw({0.0, 0.0, 10.0}, discs, {}, DrawStyle{});
+  EXPECT_EQ(img.at(2, 50), (Rgba{0, 0, 0, 255}));
+}
+
+TEST(Compare, CatchesAnAlteredFrameAndToleratesEdges) {
+  GlRenderer gl(160, 90);
+  DiscBatch discs;
+  discs.add(8.0, 4.5, 3.0, 0.0, {0, 114, 178, 255});
+  const Image a = gl.draw({0.0, 0.0, 10.0}, discs, {}, DrawStyle{});
+  Image altered = a;
+  altered.fill_rect(70, 40, 76, 46, {255, 0, 0, 255});  // 36 pixels: 0.25 % of the frame
+  const Comparison bad = compare_images(a, altered);
+  EXPECT_FALSE(bad.match);
+  EXPECT_EQ(bad.differing_pixels, 36);
+  EXPECT_EQ(bad.diff.at(72, 42), (Rgba{220, 0, 0, 255}));
+  // The same disc moved by a tenth of a pixel changes only anti-aliased edge pixels, slightly.
+  DiscBatch moved;
+  moved.add(8.01, 4.5, 3.0, 0.0, {0, 114, 178, 255});
+  const Image b = gl.draw({0.0, 0.0, 10.0}, moved, {}, DrawStyle{});
+  EXPECT_TRUE(compare_images(a, b).match);
+  EXPECT_FALSE(compare_images(a, Image(100, 90)).same_size);
+}
+
+TEST(Compare, CommandLineExitCodes) {
+  const auto dir = std::filesystem::temp_directory_path() / "runout_compare_test";
+  std::filesystem::create_directories(dir);
+  Image a(64, 48, {255, 255, 255, 255});
+  a.fill_rect(10, 10, 30, 30, {0, 114, 178, 255});
+  Image b = a;
+  b.fill_rect(40, 20, 50, 30, {213, 94, 0, 255});
+  write_png((dir / "a.png").string(), a);
+  write_png((dir / "b.png").string(), b);
+  const std::string bin = RUNOUT_BINARY;
+  auto run = [&](const std::string& args) {
+    const int status = std::system((bin + " compare " + args + " > /dev/null 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(run((dir / "a.png").string() + " " + (dir / "a.png").string()), 0);
+  EXPECT_EQ(run((dir / "a.png").string() + " " + (dir / "b.png").string() + " --diff " + (dir / "d.png").string()), 1);
+  EXPECT_TRUE(std::filesystem::exists(dir / "d.png"));
+  EXPECT_EQ(run((dir / "a.png").string() + " " + (dir / "missing.png").string()), 2);
+  std::filesystem::remove_all(dir);
+}
+
+// ---- golden frames ----
+
+// A small deterministic scene: an incline and a floor, discs of two species with set spins,
+// speeds and rotation angles (no simulation: the picture depends on drawing only).
+struct GoldenScene {
+  SceneDef scene;
+  SceneSetup setup;
+  std::optional<World> world;
+  GoldenScene() {
+    scene.species = {{"large", 1.0, 0.0, 0.5}, {"small", 0.4, 0.0, 0.5}};
+    scene.walls = {{"bed", {{-12.0, 12.0 * std::tan(0.5236)}, {0.0, 0.0}, {14.0, 0.0}}, true},
+                   {"end", {{14.0, 0.0}, {14.0, 3.0}}, false}};
+    int k = 0;
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 9; ++col, ++k) {
+        const bool large = (row + col) % 3 == 0;
+        const double d = large ? 1.0 : 0.4;
+        const double x = 1.0 + col * 1.05 + (row % 2) * 0.5, y = 0.5 * d + row * 0.8 + (large ? 0.0 : 0.05);
+        ParticleDef p = testing::disc(x, y, d, large ? 0 : 1, 0.4 * col - 1.0, 0.1 * row, (col - 4) * 9.0);
+        scene.particles.push_back(p);
+      }
+    scene.particles.push_back(testing::disc(0.0, 0.2, 0.4, 1));  // small, under nothing
+    scene.particles.push_back(testing::disc(-6.0, 6.0 * std::tan(0.5236) + 0.6, 1.0, 0, 2.0, -1.0, -3.0));
+    setup = derive_setup(scene);
+    World w = build_explicit_world(scene, setup, 1);
+    Particles p = w.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) p.angle[i] = 0.7 * i;
+    world.emplace(std::move(p), w.segments(), w.table(), w.settings());
+  }
+};
+
+struct GoldenCase {
+  const char* name;
+  ColorMode color;
+  CameraMode camera;
+  bool spokes, outlines, overlays;
+};
+
+void check_golden(const GoldenCase& c) {
+  static GoldenScene g;
+  FrameOptions o;
+  o.width = 320;
+  o.height = 180;
+  o.color = c.color;
+  o.camera = c.camera;
+  o.window = {2.0, -0.5, 8.0, 3.0};
+  o.front_width = 8.0;
+  o.spokes = c.spokes;
+  o.outlines = c.outlines;
+  o.overlays = c.overlays;
+  o.speed_limit = 4.0;
+  FrameMaker maker(o, g.scene, g.setup);
+  const Image img = maker.make(*g.world, 12.5);
+  const std::string golden = std::string(RUNOUT_SOURCE_DIR) + "/tests/golden/" + c.name + ".png";
+  if (const char* u = std::getenv("RUNOUT_UPDATE_GOLDENS"); u && std::string(u) == "1") {
+    write_png(golden, img);
+    GTEST_SKIP() << "wrote " << golden;
+  }
+  ASSERT_TRUE(std::filesystem::exists(golden)) << golden << " is missing; see the header of this file";
+  // Tolerance: a pixel differs if a channel is off by more than 24 of 255, and up to 0.2 % of
+  // the pixels may differ (anti-aliased edges after a Mesa or FreeType update).
+  const Comparison cmp = compare_images(read_png(golden), img);
+  if (!cmp.match) {
+    const auto out = std::filesystem::current_path() / "render_failures";
+    std::filesystem::create_directories(out);
+    const std::string actual = (out / (std::string(c.name) + "-actual.png")).string();
+    const std::string diff = (out / (std::string(c.name) + "-diff.png")).string();
+    write_png(actual, img);
+    if (cmp.same_size) write_png(diff, cmp.diff);
+    FAIL() << c.name << ": " << cmp.differing_pixels << " pixels differ (" << 100 * cmp.share
+           << " %), rms " << cmp.rms << "; actual " << actual << ", diff " << diff;
+  }
+}
+
+class Golden : public ::testing::TestWithParam<GoldenCase> {};
+TEST_P(Golden, MatchesTheStoredFrame) { check_golden(GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(
+    Frames, Golden,
+    ::testing::Values(GoldenCase{"species_whole", ColorMode::species, CameraMode::whole, false, false, true},
+                      GoldenCase{"spin_window_spokes", ColorMode::spin, CameraMode::window, true, true, true},
+                      GoldenCase{"layer_deposit", ColorMode::layer, CameraMode::deposit, false, false, true},
+                      GoldenCase{"speed_front", ColorMode::speed, CameraMode::front, false, true, true},
+                      GoldenCase{"species_window_plain", ColorMode::species, CameraMode::window, false, false, false}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace runout
