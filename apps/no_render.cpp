@@ -21,6 +21,7 @@ namespace {
 }  // namespace
 
 int render_command(const RenderOptions&) { refuse(); }
+int bench_frames(World&, const SceneDef&, const SceneSetup&, const PictureOptions&, long long, long long) { refuse(); }
 int compare_command(const CompareOptions&) { refuse(); }
 std::unique_ptr<PictureSession> attach_pictures(const PictureOptions&, AvalancheRun&, const SceneDef&,
                                                 const SceneSetup&, const std::string&) {

@@ -1,6 +1,7 @@
 #include "render_cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -167,6 +168,52 @@ int render_command(const RenderOptions& o) {
   render::FrameMaker maker(frame_options(o.picture), scene, setup);
   render::write_png(o.output, maker.make(world, t_star), o.picture.transparent);
   std::fprintf(stderr, "runout: wrote %s (t* = %.2f)\n", o.output.c_str(), t_star);
+  return 0;
+}
+
+int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
+                 long long frames, long long steps_between) {
+  using Clock = std::chrono::steady_clock;
+  const render::FrameOptions frame = frame_options(o);
+  render::FrameMaker maker(frame, scene, setup);
+  std::vector<render::Image> images;
+  double draw = 0, png = 0;
+  std::size_t png_bytes = 0;
+  for (long long f = 0; f < frames; ++f) {
+    for (long long s = 0; s < steps_between; ++s) world.step();
+    auto t0 = Clock::now();
+    render::Image img = maker.make(world, world.time() / setup.unit_time);
+    draw += std::chrono::duration<double>(Clock::now() - t0).count();
+    t0 = Clock::now();
+    png_bytes += render::encode_png(img, false).size();
+    png += std::chrono::duration<double>(Clock::now() - t0).count();
+    images.push_back(std::move(img));
+  }
+  // Video encoding alone, frames fed as fast as the encoder takes them.
+  const std::string video_path = (std::filesystem::temp_directory_path() / "runout_bench.mp4").string();
+  render::VideoOptions video;
+  video.preset = o.preset;
+  video.crf = o.crf;
+  video.lossless = o.lossless;
+  auto t0 = Clock::now();
+  {
+    render::VideoWriter writer(video_path, frame.width, frame.height, video);
+    for (auto& img : images) writer.write(img);
+    writer.finish();
+  }
+  const double encode = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::filesystem::remove(video_path);
+  const double n = static_cast<double>(frames);
+  std::printf("frame_size: %dx%d\n", frame.width, frame.height);
+  std::printf("disc_method: %s\n", frame.method == render::DiscMethod::quads ? "quads" : "point_sprites");
+  std::printf("discs: %zu\n", world.particles().size());
+  std::printf("frames: %lld\n", frames);
+  std::printf("draw_readback_overlays_ms: %.2f\n", 1000 * draw / n);
+  std::printf("png_encode_ms: %.2f\n", 1000 * png / n);
+  std::printf("png_kib: %.1f\n", png_bytes / n / 1024.0);
+  std::printf("video_encode_ms: %.2f\n", 1000 * encode / n);
+  std::printf("draw_plus_png_ms: %.2f\n", 1000 * (draw + png) / n);
+  std::printf("draw_plus_video_ms: %.2f\n", 1000 * (draw + encode) / n);
   return 0;
 }
 

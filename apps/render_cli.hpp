@@ -24,7 +24,7 @@ struct PictureOptions {
   int fps = 30;
   double frame_every = 0.5;  // t* between movie frames
   int crf = 20;
-  std::string preset = "veryfast";
+  std::string preset = "ultrafast";
   bool lossless = false, spokes = false, outlines = false, transparent = false, no_overlays = false;
   double spin_limit = 10.0, speed_limit = 0.0, front_width = 50.0;
   bool sprites_off = false;  // draw discs as quads (for measuring both methods)
@@ -65,6 +65,11 @@ class PictureSession {
 std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run,
                                                 const SceneDef& scene, const SceneSetup& setup,
                                                 const std::string& out_dir);
+// `runout bench --frames N`: times drawing (+ read-back), PNG encoding and video encoding of
+// N frames of `world`, advancing it `steps_between` steps between frames; prints ms per frame.
+int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
+                 long long frames, long long steps_between);
+
 // Whether this binary was built with the renderer.
 bool have_renderer();
 

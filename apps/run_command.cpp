@@ -242,6 +242,7 @@ int bench_command(const BenchOptions& o) {
   const long long warmup = o.warmup_steps > 0 ? o.warmup_steps
                                               : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
   for (long long s = 0; s < warmup; ++s) world.step();
+  if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);
   const double t_star_start = world.time() / setup.unit_time;
   const StepProfile before = world.profile();
   const auto t0 = Clock::now();

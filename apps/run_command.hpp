@@ -30,6 +30,8 @@ struct BenchOptions {
   int threads = 1;
   std::string cache_dir;
   std::vector<std::string> overrides;
+  long long frames = 0;  // > 0: time this many frames of drawing, PNG and video instead
+  PictureOptions picture;
 };
 
 int run_command(const RunOptions& o);    // returns the process exit code

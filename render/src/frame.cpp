@@ -191,7 +191,8 @@ std::string format_number(double v) {
 
 }  // namespace
 
-void FrameMaker::draw_overlays(Image& img, double t_star) {
+void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
+  const double t_star = plan.t_star;
   const int W = img.width, H = img.height;
   const int fs = std::max(10, static_cast<int>(std::lround(H / 36.0)));  // font pixel size
   const int pad = std::max(4, fs / 2);
@@ -208,7 +209,7 @@ void FrameMaker::draw_overlays(Image& img, double t_star) {
 
   // Scale bar in units of D, bottom left: about an eighth of the width.
   const double D = setup_.large_diameter;
-  const double px_per_D = D * view_.scale;
+  const double px_per_D = D * plan.view.scale;
   const double n_D = nice_below(std::max(W / 8.0 / px_per_D, 1e-3));
   const int bar = static_cast<int>(std::lround(n_D * px_per_D));
   const std::string label = format_number(n_D) + " D";
@@ -270,22 +271,29 @@ void FrameMaker::draw_overlays(Image& img, double t_star) {
   }
 }
 
-Image FrameMaker::make(const World& world, double t_star) {
+FramePlan FrameMaker::plan(const World& world, double t_star) {
   update_camera(world, t_star);
   colour_discs(world);
-  std::vector<SegmentLine> walls;
+  FramePlan plan;
+  plan.view = view_;
+  plan.discs = discs_;
   for (const auto& s : world.segments())
-    if (s.active) walls.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
+    if (s.active) plan.walls.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
+  plan.t_star = t_star;
+  last_t_star_ = t_star;
+  return plan;
+}
+
+Image FrameMaker::draw(const FramePlan& plan) {
   DrawStyle style;
   if (options_.transparent) style.background.a = 0;
   // Outlines and spokes scale with the drawn size of a small disc.
-  const double small_px = setup_.unit_length * 0.5 * view_.scale;
+  const double small_px = setup_.unit_length * 0.5 * plan.view.scale;
   style.outline_px = options_.outlines ? std::clamp(0.12 * small_px, 0.6, 3.0) : 0.0;
   style.spokes = options_.spokes;
   style.wall_half_width_px = std::max(1.0, options_.height / 480.0);
-  Image img = gl_.draw(view_, discs_, walls, style);
-  if (options_.overlays) draw_overlays(img, t_star);
-  last_t_star_ = t_star;
+  Image img = gl_.draw(plan.view, plan.discs, plan.walls, style);
+  if (options_.overlays) draw_overlays(img, plan);
   return img;
 }
 

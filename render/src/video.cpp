@@ -15,6 +15,7 @@ extern "C" {
 #include <thread>
 
 #include "runout/render/gl_renderer.hpp"
+#include "runout/render/idle_thread.hpp"
 
 namespace runout::render {
 
@@ -82,6 +83,7 @@ struct VideoWriter::Impl {
   }
 
   void run() {
+    run_when_idle();
     try {
       for (;;) {
         Image image;
@@ -170,7 +172,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
     throw RenderError("video: cannot write " + path + ": " + av_error(r));
 
   m.sws = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, m.codec->pix_fmt,
-                         SWS_BICUBIC | SWS_ACCURATE_RND, nullptr, nullptr, nullptr);
+                         SWS_BILINEAR, nullptr, nullptr, nullptr);  // same size: only chroma is resampled
   if (!m.sws) throw RenderError("video: no RGBA to YUV conversion");
   sws_setColorspaceDetails(m.sws, sws_getCoefficients(SWS_CS_ITU709), 1, sws_getCoefficients(SWS_CS_ITU709), 0, 0,
                            1 << 16, 1 << 16);

@@ -38,20 +38,33 @@ struct FrameOptions {
   DiscMethod method = DiscMethod::point_sprites;
 };
 
+// Everything one frame shows, taken from the World on the simulation thread; drawing it needs
+// no World, so it can happen on another thread while the simulation goes on.
+struct FramePlan {
+  View view;
+  DiscBatch discs;
+  std::vector<SegmentLine> walls;
+  double t_star = 0;
+};
+
 // Owns an OpenGL context and a font; keeps the camera's state between frames so every frame
 // of one FrameMaker has the same scale (and the front camera moves smoothly).
 class FrameMaker {
  public:
   FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup);
-  Image make(const World& world, double t_star);
+  // plan() reads the World and moves the camera; draw() makes the picture (any one thread at a
+  // time). make() is both.
+  FramePlan plan(const World& world, double t_star);
+  Image draw(const FramePlan& plan);
+  Image make(const World& world, double t_star) { return draw(plan(world, t_star)); }
   const FrameOptions& options() const { return options_; }
-  // The world window of the last frame.
+  // The world window of the last planned frame.
   const View& last_view() const { return view_; }
 
  private:
   void update_camera(const World& world, double t_star);
   void colour_discs(const World& world);
-  void draw_overlays(Image& image, double t_star);
+  void draw_overlays(Image& image, const FramePlan& plan);
 
   FrameOptions options_;
   const SceneDef& scene_;

@@ -13,24 +13,26 @@
 
 namespace runout::render {
 
+// The simulation thread only plans each frame (camera, colours: a copy of the disc state); a
+// drawing thread renders it and hands it to the PNG writer and the video encoder, so pictures
+// overlap the physics.
 class MovieRecorder : public Observer {
  public:
   // `video_path` empty: no video; `png_dir` empty: no PNG sequence.
   MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
                 const std::string& video_path, const VideoOptions& video, const std::string& png_dir);
+  ~MovieRecorder() override;
   void observe(const World& world, double t_star) override;
-  void finish();  // completes the video file
+  void finish();  // draws what is queued and completes the video file; rethrows worker errors
   long frames() const { return frames_; }
-  // Seconds spent drawing (GL + overlays) and writing PNGs on the simulation thread.
-  double draw_seconds() const { return draw_seconds_; }
+  // Seconds the drawing thread spent drawing and writing PNGs.
+  double draw_seconds() const;
 
  private:
+  struct Worker;
   FrameMaker maker_;
-  std::optional<VideoWriter> video_;
-  std::string png_dir_;
-  bool keep_alpha_;
+  std::unique_ptr<Worker> worker_;
   long frames_ = 0;
-  double draw_seconds_ = 0;
 };
 
 // Writes DIR/snapshot_t<T>.png for each requested T (the frame is the step nearest T; its stamp

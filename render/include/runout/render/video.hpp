@@ -14,7 +14,7 @@ namespace runout::render {
 struct VideoOptions {
   int fps = 30;
   int crf = 20;                  // x264 constant rate factor, 0..51 (lower = better)
-  std::string preset = "veryfast";
+  std::string preset = "ultrafast";
   bool lossless = false;         // yuv444p, qp 0: exact colours, not playable in browsers
   int queue_frames = 8;          // frames waiting for the encoder before write() blocks
 };
