@@ -135,8 +135,6 @@ class Session : public PictureSession {
     if (movie_) {
       r << movie_->frames() << " movie frames";
       if (!movie_path_.empty()) r << " in " << movie_path_;
-      r << " (drawing " << static_cast<int>(1000 * movie_->draw_seconds() / std::max(1L, movie_->frames()))
-        << " ms a frame)";
     }
     if (snapshots_) r << (movie_ ? "; " : "") << snapshots_->written().size() << " snapshots";
     return r.str();
