@@ -9,10 +9,6 @@ namespace runout::app {
 
 bool have_renderer() { return false; }
 
-void add_picture_options(CLI::App*, PictureOptions&, bool) {}
-
-std::vector<double> parse_times(const std::string&) { return {}; }
-
 namespace {
 [[noreturn]] void refuse() {
   throw std::runtime_error("this runout was built without the renderer (install libosmesa6-dev, libpng-dev, "
