@@ -49,7 +49,7 @@ std::string hex(std::uint64_t v) {
 
 // Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
 // one that this binary would not have settled itself.
-constexpr int kPhysicsRevision = 3;
+constexpr int kPhysicsRevision = 4;
 
 std::uint64_t pile_key(const SceneDef& scene) {
   return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +
@@ -147,6 +147,7 @@ int run_command(const RunOptions& o) {
   if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
   if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
   const SceneSetup setup = derive_setup(scene, source);
+  check_runnable(scene, setup, source);
   const int threads = resolve_threads(o.threads, setup);
 
   io::make_directories(o.out_dir);

@@ -42,9 +42,14 @@ double mass_kinetic_energy(const World& world) {
     const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], rsum = p.radius[i] + p.radius[j];
     if (dx * dx + dy * dy < rsum * rsum) in_mass[i] = in_mass[j] = 1;
   }
+  // A scene that is mostly lone discs (one disc, a sparse spray) has no "mass" apart from its
+  // discs: then every disc counts.
+  std::size_t members = 0;
+  for (char m : in_mass) members += m;
+  const bool all = 2 * members < p.size();
   double e = 0;
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (in_mass[k]) e += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k]);
+    if (all || in_mass[k]) e += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k]);
   return e;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -86,6 +87,12 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
     s.counts.assign(scene.species.size(), 0);
     for (const auto& p : scene.particles) ++s.counts[p.species];
   }
+  // Explicit integrators are stable for omega dt < 2: dt <= tau / pi (SPEC §8 extremes).
+  if (scene.integration.dt_fraction > 1.0 / kPi)
+    throw ConfigError(source, "integration.dt_fraction",
+                      "value " + std::to_string(scene.integration.dt_fraction) +
+                          " is beyond the stability limit of the explicit integrators, 1/pi = 0.318 "
+                          "of tau_min (omega dt < 2); use at most 0.3 (default 0.1)");
   // The step is set by the species present: a %A_p = 0 pile has no small discs to resolve.
   std::vector<char> present(scene.species.size(), 0);
   bool any = false;
@@ -94,6 +101,14 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
   s.tau_min = minimum_collision_period(s.table, scene.species, scene.material.density, present);
   s.dt = scene.integration.dt_fraction * s.tau_min;
   return s;
+}
+
+void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::string& source) {
+  int total = 0;
+  for (int c : setup.counts) total += c;
+  if (total == 0)
+    throw ConfigError(source, scene.avalanche ? "avalanche.reference_large_count" : "particles",
+                      "the scene has no discs to simulate (add [[particles]] or an [avalanche])");
 }
 
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads) {
@@ -108,6 +123,9 @@ StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int t
   // Piles are renumbered spatially for cache locality across threads; explicit scenes keep the
   // order the user gave (tests and scripts address their discs by position in the file).
   st.reorder_every = scene.avalanche ? 2000 : 0;
+  st.overlap_guard = scene.contact.overlap_guard;
+  // A tenth of the free-fall speed over a small radius: far above creep and jitter.
+  st.impact_rate = 0.1 * std::sqrt(scene.integration.gravity * 0.5 * setup.unit_length);
   return st;
 }
 
@@ -183,12 +201,16 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(unit_time / setup.dt));
   bool growing = true;
   double below_since = -1;
+  // Growing discs placed at random overlap by construction, not by impact, and the pile needs
+  // its settling to relax them: no guard until it has settled.
+  world.set_overlap_guard(std::numeric_limits<double>::infinity());
   const double gravity = scene.integration.gravity;
   for (std::int64_t step = 0;; ++step) {
     const double t_star = world.time() / unit_time;
     if (growing) {
       const double shortfall = (1.0 - seed_fraction) * std::exp(-t_star / prep.growth_time);
       growing = shortfall > 1e-4;
+      if (!growing) world.forget_normal_history();
       const double scale = growing ? 1.0 - shortfall : 1.0;
       // By id: the world renumbers its discs spatially as they move.
       const auto& ids = world.particles().id;
@@ -206,7 +228,10 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
         progress(t_star, ratio);
       if (!growing && ratio < prep.settle_ek_threshold) {
         if (below_since < 0) below_since = t_star;
-        if (t_star - below_since >= prep.settle_hold) break;
+        if (t_star - below_since >= prep.settle_hold) {
+          world.set_overlap_guard(scene.contact.overlap_guard);
+          break;
+        }
       } else {
         below_since = -1;
       }

@@ -162,10 +162,13 @@ struct PairKernel {
   const typename Law::Coefficients* normal; const CundallStrack* tangential;
   int species_count;
   double dt;
+  double impact_rate;
   double* overlap_max; double* spring; double* fx; double* fy; double* ft;
 
-  void operator()(std::int64_t begin, std::int64_t end) const {
-#pragma omp simd
+  // Returns the largest overlap in units of the smaller radius, for the overlap guard.
+  double operator()(std::int64_t begin, std::int64_t end) const {
+    double worst = 0;
+#pragma omp simd reduction(max : worst)
     for (std::int64_t q = begin; q < end; ++q) {
       const std::int32_t i = pi[q], j = pj[q];
       const double dx = x[j] - x[i], dy = y[j] - y[i];
@@ -193,14 +196,18 @@ struct PairKernel {
       fx[q] = -fn_on * nx - ft_on * ny;
       fy[q] = -fn_on * ny + ft_on * nx;
       ft[q] = ft_on;
+      // The guard watches impacts (loading faster than impact_rate), not the permanent set of
+      // a static hysteretic contact.
+      worst = std::max(worst, touching && overlap_rate > impact_rate ? overlap / std::min(r[i], r[j]) : 0.0);
     }
+    return worst;
   }
 };
 
 }  // namespace
 
 template <class Law>
-void World::pair_forces() {
+double World::pair_forces() {
   const auto& p = particles_;
   auto& c = pairs_;
   const int ns = table_.species_count;
@@ -212,31 +219,31 @@ void World::pair_forces() {
   }
   const PairKernel<Law> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
                                p.radius.data(), p.species.data(), c.i.data(), c.j.data(),
-                               normal.data(), tangential.data(), ns, settings_.dt,
+                               normal.data(), tangential.data(), ns, settings_.dt, settings_.impact_rate,
                                c.overlap_max.data(), c.tangential_spring.data(), c.fx.data(),
                                c.fy.data(), c.ft.data()};
   const auto n = static_cast<std::int64_t>(c.size());
   const int threads = settings_.threads;
-  if (threads == 1) {
-    kernel(0, n);
-    return;
-  }
+  if (threads == 1) return kernel(0, n);
+  double worst[kMaxThreads] = {};
 #pragma omp parallel num_threads(threads)
   {
     const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
-    kernel(n * t / T, n * (t + 1) / T);
+    worst[t] = kernel(n * t / T, n * (t + 1) / T);
   }
+  return *std::max_element(worst, worst + threads);
 }
 
 // Disc–wall contacts: few, so a plain loop. The wall plays j with zero velocity (SPEC §2).
 template <class Law>
-void World::wall_forces() {
+double World::wall_forces() {
   const auto& p = particles_;
   auto& c = wall_contacts_;
   const auto n = static_cast<std::int64_t>(c.size());
   const double dt = settings_.dt;
+  double worst = 0;
 #pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static)
+    schedule(static) reduction(max : worst)
   for (std::int64_t q = 0; q < n; ++q) {
     const std::int32_t i = c.disc[q];
     const Segment& s = segments_[c.segment[q]];
@@ -261,24 +268,53 @@ void World::wall_forces() {
     c.fx[q] = -fn_on * normal.x() - ft_on * normal.y();
     c.fy[q] = -fn_on * normal.y() + ft_on * normal.x();
     c.ft[q] = ft_on;
+    worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / p.radius[i] : 0.0);
   }
+  return worst;
 }
 
 void World::compute_forces() {
   auto t0 = Clock::now();
+  double worst = 0;
   switch (settings_.normal_model) {
-    case NormalModel::walton_braun: pair_forces<WaltonBraun>(); break;
-    case NormalModel::linear_dashpot: pair_forces<LinearDashpot>(); break;
-    case NormalModel::hertz: pair_forces<Hertz>(); break;
+    case NormalModel::walton_braun: worst = pair_forces<WaltonBraun>(); break;
+    case NormalModel::linear_dashpot: worst = pair_forces<LinearDashpot>(); break;
+    case NormalModel::hertz: worst = pair_forces<Hertz>(); break;
   }
   profile_.pair_forces += seconds_since(t0);
   t0 = Clock::now();
   switch (settings_.normal_model) {
-    case NormalModel::walton_braun: wall_forces<WaltonBraun>(); break;
-    case NormalModel::linear_dashpot: wall_forces<LinearDashpot>(); break;
-    case NormalModel::hertz: wall_forces<Hertz>(); break;
+    case NormalModel::walton_braun: worst = std::max(worst, wall_forces<WaltonBraun>()); break;
+    case NormalModel::linear_dashpot: worst = std::max(worst, wall_forces<LinearDashpot>()); break;
+    case NormalModel::hertz: worst = std::max(worst, wall_forces<Hertz>()); break;
   }
   profile_.wall_forces += seconds_since(t0);
+  check_overlap(worst);
+}
+
+// SPEC §8: an overlap beyond the guard means the contact is far stiffer-demanding than the
+// stiffness was designed for (too fast an impact, too large a step): stop with advice.
+void World::check_overlap(double worst) const {
+  if (!(worst > settings_.overlap_guard)) return;
+  const auto& p = particles_;
+  std::int64_t a = -1, b = -1;
+  double found = 0;
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const std::int32_t i = pairs_.i[q], j = pairs_.j[q];
+    const double d = std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+    const double ratio = (p.radius[i] + p.radius[j] - d) / std::min(p.radius[i], p.radius[j]);
+    if (ratio > found) { found = ratio; a = p.id[i]; b = p.id[j]; }
+  }
+  std::ostringstream msg;
+  msg << "overlap of " << static_cast<int>(100 * worst) << " % of the smaller radius (guard: "
+      << static_cast<int>(100 * settings_.overlap_guard) << " %) at step " << steps_ << " (t* = "
+      << time_ / settings_.unit_time << ")";
+  if (a >= 0 && found >= worst * 0.999) msg << " between discs " << a << " and " << b;
+  else msg << " against a wall";
+  msg << ": an impact faster than the contact stiffness was designed for, or too large a step. "
+         "Raise contact.design_impact_speed (stiffer contacts) or lower contact.design_max_overlap, "
+         "and/or lower integration.dt_fraction";
+  throw NumericalError(msg.str());
 }
 
 // Sum of the contact forces on disc k plus gravity, as accelerations (eqs. 2.10–2.11): its own

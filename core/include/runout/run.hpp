@@ -27,7 +27,8 @@ struct TimeseriesRow {
 };
 
 // Translational kinetic energy of the discs that touch at least one other disc (the mass; a
-// lone disc rolling away on the floor is not part of it).
+// lone disc rolling away on the floor is not part of it) — or of all discs when fewer than half
+// touch another (a single disc, a spray).
 double mass_kinetic_energy(const World& world);
 
 // Something that wants to see the world at chosen times: frame sinks, dumps, checkpoints.

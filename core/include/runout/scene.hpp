@@ -27,11 +27,12 @@ struct ContactDef {
   double design_impact_speed = 10.0;  // alphadot0, units of sqrt(g r*)
   double design_max_overlap = 0.01;   // alphamax, fraction of r*
   double stiffness_ratio = 1.0;       // kratio = k_s / k_L
+  double overlap_guard = 1.0;         // stop when an impact overlaps beyond this share of the smaller radius
 };
 
 struct IntegrationDef {
   IntegratorKind integrator = IntegratorKind::symplectic_euler;
-  double dt_fraction = 0.1;  // dt = dt_fraction * tau_min (SPEC §3)
+  double dt_fraction = 0.1;  // dt = dt_fraction * tau_min (SPEC §3); at most 1/pi (stability)
   double skin = 0.2;         // Verlet skin in small diameters d (SPEC §5 contact search)
   double gravity = 9.81;     // m/s^2
 };

@@ -28,6 +28,9 @@ struct SceneSetup {
 // Every derived quantity of a scene. Throws ConfigError (naming `source`) for scenes that
 // cannot be built, e.g. two explicit discs with the same centre.
 SceneSetup derive_setup(const SceneDef& scene, const std::string& source = "scene");
+// A scene that can be run: it has discs. Throws ConfigError naming `source`.
+void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::string& source);
+
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads);
 
 // SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1).

@@ -31,6 +31,11 @@ struct StepSettings {
   double unit_time = 1;  // seconds per t*, for messages
   // Renumber discs spatially every this many steps (0: never); see World::reorder_discs.
   std::int64_t reorder_every = 0;
+  // The run stops (NumericalError) when an impact (a contact loading faster than impact_rate)
+  // overlaps beyond this share of the smaller radius: the contact is far softer than the impact
+  // needs and discs may pass through each other.
+  double overlap_guard = 1.0;
+  double impact_rate = 0;  // m/s: only contacts loading faster than this are guarded
 };
 
 // Wall-clock seconds spent in each phase since construction.
@@ -63,6 +68,13 @@ class World {
 
   void set_threads(int threads) { settings_.threads = std::clamp(threads, 1, kMaxThreads); }
   void set_clock(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
+  void set_overlap_guard(double share) { settings_.overlap_guard = share; }
+  // Puts every contact back on its loading line (forgets the largest overlaps reached): the
+  // dents left by radius growth during preparation are not material history.
+  void forget_normal_history() {
+    std::fill(pairs_.overlap_max.begin(), pairs_.overlap_max.end(), 0.0);
+    std::fill(wall_contacts_.overlap_max.begin(), wall_contacts_.overlap_max.end(), 0.0);
+  }
   // Stops a wall from acting (the gate at release, SPEC §5). Its contacts end now.
   void deactivate_wall(int wall_index);
   void deactivate_wall_segment(std::size_t segment);
@@ -76,14 +88,15 @@ class World {
   void rebuild_lists();
   void reorder_discs();
   void compute_forces();
-  template <class Law> void pair_forces();
-  template <class Law> void wall_forces();
+  template <class Law> double pair_forces();  // returns the largest overlap / smaller radius
+  template <class Law> double wall_forces();
   ForceSum force_sum() const;
   void finish_pass(const PassResult* results);
   void integrate_symplectic_euler();
   void verlet_half_kick_and_drift();
   void verlet_half_kick();
   void check_finite() const;
+  void check_overlap(double worst) const;
 
   Particles particles_;
   std::vector<Segment> segments_;

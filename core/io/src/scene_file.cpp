@@ -218,11 +218,12 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   }
   if (auto t = top.subtable("contact")) {
     TableReader r(*t, "contact", source);
-    r.allow({"normal_model", "design_impact_speed", "design_max_overlap", "stiffness_ratio"}, "");
+    r.allow({"normal_model", "design_impact_speed", "design_max_overlap", "stiffness_ratio", "overlap_guard"}, "");
     r.choice("normal_model", s.contact.normal_model, kNormalModels);
     r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
     r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
     r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
+    r.number("overlap_guard", s.contact.overlap_guard, {0, 2, true, false});
     r.finish();
   }
   if (auto t = top.subtable("integration")) {
@@ -424,7 +425,8 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
   root.insert("contact", toml::table{{"normal_model", to_string(s.contact.normal_model)},
                                      {"design_impact_speed", s.contact.design_impact_speed},
                                      {"design_max_overlap", s.contact.design_max_overlap},
-                                     {"stiffness_ratio", s.contact.stiffness_ratio}});
+                                     {"stiffness_ratio", s.contact.stiffness_ratio},
+                                     {"overlap_guard", s.contact.overlap_guard}});
   root.insert("integration", toml::table{{"integrator", to_string(s.integration.integrator)},
                                          {"dt_fraction", s.integration.dt_fraction},
                                          {"skin", s.integration.skin},
