@@ -138,6 +138,7 @@ void AvalancheRun::fire_observers() {
 // model (as in the thesis) a lone disc rolling on the floor never stops, and must not keep the
 // run going forever. The time series keeps the total E_k (eq. 4.5).
 bool AvalancheRun::finished() {
+  world_.check_escape(setup_.large_diameter);
   const double now = t_star();
   const auto& p = world_.particles();
   const double total = state_.ep0 > 0 ? translational_energy(p) / state_.ep0 : 0.0;

@@ -222,6 +222,7 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
     }
     world.step();
     if (step % std::max<std::int64_t>(1, steps_per_unit / 10) == 0) {
+      world.check_escape(setup.large_diameter);
       const auto& pp = world.particles();
       const double ratio = translational_energy(pp) / potential_energy(pp, gravity);
       if (progress && step % (10 * std::max<std::int64_t>(1, steps_per_unit / 10)) == 0)

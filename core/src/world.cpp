@@ -481,6 +481,28 @@ void World::finish_pass(const PassResult* results) {
   finite_ = finite;
 }
 
+void World::check_escape(double margin) const {
+  if (segments_.empty()) return;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& s : segments_) {
+    x0 = std::min({x0, s.a.x(), s.b.x()}); x1 = std::max({x1, s.a.x(), s.b.x()});
+    y0 = std::min({y0, s.a.y(), s.b.y()}); y1 = std::max({y1, s.a.y(), s.b.y()});
+  }
+  const auto& p = particles_;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    // Above the walls is allowed (the pile box is open at the top); below or beside is not.
+    if (p.y[k] < y0 - margin || p.x[k] < x0 - margin || p.x[k] > x1 + margin) {
+      std::ostringstream msg;
+      msg << "disc id " << p.id[k] << " left the domain at step " << steps_ << " (t* = "
+          << time_ / settings_.unit_time << "), at (" << p.x[k] << ", " << p.y[k]
+          << ") m: it passed through a wall. Contacts are too soft for the squeeze or impact: "
+             "raise contact.design_impact_speed, lower integration.dt_fraction, or grow the pile "
+             "more slowly (preparation.growth_time)";
+      throw NumericalError(msg.str());
+    }
+  }
+}
+
 void World::check_finite() const {
   if (finite_) return;
   const auto& p = particles_;

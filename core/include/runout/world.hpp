@@ -96,6 +96,11 @@ class World {
   void verlet_half_kick_and_drift();
   void verlet_half_kick();
   void check_finite() const;
+ public:
+  // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
+  // (it passed through a wall and would fall for ever). No walls: no check.
+  void check_escape(double margin) const;
+ private:
   void check_overlap(double worst) const;
 
   Particles particles_;
