@@ -49,7 +49,7 @@ std::string hex(std::uint64_t v) {
 
 // Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
 // one that this binary would not have settled itself.
-constexpr int kPhysicsRevision = 4;
+constexpr int kPhysicsRevision = 5;
 
 std::uint64_t pile_key(const SceneDef& scene) {
   return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "runout/errors.hpp"
+#include "runout/run.hpp"
 
 namespace runout {
 
@@ -224,7 +225,9 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
     if (step % std::max<std::int64_t>(1, steps_per_unit / 10) == 0) {
       world.check_escape(setup.large_diameter);
       const auto& pp = world.particles();
-      const double ratio = translational_energy(pp) / potential_energy(pp, gravity);
+      // As for rest after release (run.cpp): a disc rattling alone on top must not hold up
+      // a settled pile.
+      const double ratio = mass_kinetic_energy(world) / potential_energy(pp, gravity);
       if (progress && step % (10 * std::max<std::int64_t>(1, steps_per_unit / 10)) == 0)
         progress(t_star, ratio);
       if (!growing && ratio < prep.settle_ek_threshold) {
