@@ -25,6 +25,8 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   w.put(scene_key);
   w.put(world.time());
   w.put(world.step_count());
+  w.put(world.dissipation().normal);
+  w.put(world.dissipation().friction);
   w.put_vector(p.x); w.put_vector(p.y); w.put_vector(p.vx); w.put_vector(p.vy);
   w.put_vector(p.omega); w.put_vector(p.angle); w.put_vector(p.ax); w.put_vector(p.ay);
   w.put_vector(p.alpha); w.put_vector(p.radius); w.put_vector(p.mass);
@@ -76,6 +78,9 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
     throw IoError(name + ": checkpoint was written for a different scene");
   const double time = r.get<double>();
   const auto steps = r.get<std::int64_t>();
+  Dissipation lost;
+  lost.normal = r.get<double>();
+  lost.friction = r.get<double>();
   Particles p;
   p.x = r.get_vector<double>(); p.y = r.get_vector<double>();
   p.vx = r.get_vector<double>(); p.vy = r.get_vector<double>();
@@ -123,6 +128,7 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   for (std::size_t s = 0; s < active.size(); ++s)
     if (!active[s]) restored.deactivate_wall_segment(s);
   restored.set_clock(time, steps);
+  restored.set_dissipation(lost);
   restored.restore_history(pairs, walls);
   world = std::move(restored);
   return run_state;

@@ -16,6 +16,8 @@ std::string encode_run_state(const RunState& s) {
   w.put(s.top_release.top_x); w.put(s.top_release.top_y);
   w.put(s.below_since); w.put(s.peak_ek); w.put(s.t_star_peak_ek); w.put(s.next_sample);
   w.put(s.wall_seconds);
+  w.put(s.energy_total0); w.put(s.committed0); w.put(s.dissipated_normal0); w.put(s.dissipated_friction0);
+  w.put(s.worst_residual);
   w.put_vector(s.series);
   return w.bytes();
 }
@@ -29,6 +31,9 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   s.below_since = r.get<double>(); s.peak_ek = r.get<double>();
   s.t_star_peak_ek = r.get<double>(); s.next_sample = r.get<double>();
   s.wall_seconds = r.get<double>();
+  s.energy_total0 = r.get<double>(); s.committed0 = r.get<double>();
+  s.dissipated_normal0 = r.get<double>(); s.dissipated_friction0 = r.get<double>();
+  s.worst_residual = r.get<double>();
   s.series = r.get_vector<TimeseriesRow>();
   return s;
 }
@@ -78,11 +83,19 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
   state_.com_release = centre_of_mass(p);
   state_.top_release = highest_point(p);
   state_.next_sample = 0;
+  world.set_track_energy(true);
+  const EnergyState e = world.energy(state_.energy_reference_y);
+  state_.energy_total0 = e.translational + e.rotational + e.potential + e.elastic;
+  state_.committed0 = e.committed_normal;
+  state_.dissipated_normal0 = world.dissipation().normal;
+  state_.dissipated_friction0 = world.dissipation().friction;
 }
 
 AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
                            RunState state)
-    : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {}
+    : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {
+  world.set_track_energy(true);
+}
 
 void AvalancheRun::add_observer(Observer& observer, Schedule schedule) {
   std::sort(schedule.at.begin(), schedule.at.end());
@@ -113,6 +126,16 @@ TimeseriesRow AvalancheRun::sample() const {
   row.large_mean_height = h.large / d;
   row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   row.front_x = farthest_edge_x(p) / d;
+  const EnergyState e = world_.energy(state_.energy_reference_y);
+  const Dissipation& lost = world_.dissipation();
+  const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
+  const double friction = lost.friction - state_.dissipated_friction0;
+  row.ep_over_ep0 = e.potential / ep0;
+  row.elastic_over_ep0 = e.elastic / ep0;
+  row.dissipated_normal_over_ep0 = normal / ep0;
+  row.dissipated_friction_over_ep0 = friction / ep0;
+  row.residual_over_ep0 = (state_.energy_total0 - (e.translational + e.rotational + e.potential + e.elastic +
+                                                   normal + friction)) / ep0;
   return row;
 }
 
@@ -170,6 +193,7 @@ RunResult AvalancheRun::run() {
   auto record = [&] {
     if (t_star() >= state_.next_sample - 0.5 * setup_.dt / setup_.unit_time) {
       state_.series.push_back(sample());
+      state_.worst_residual = std::max(state_.worst_residual, std::abs(state_.series.back().residual_over_ep0));
       while (state_.next_sample <= t_star() + 0.5 * setup_.dt / setup_.unit_time)
         state_.next_sample += scene_.output.timeseries_every;
     }
@@ -235,6 +259,8 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.H_layer_over_d = r.basal_layer.mean_thickness / setup_.unit_length;
   r.H_layer_over_d_spread = r.basal_layer.spread / setup_.unit_length;
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
+  r.final_energy = sample();
+  r.worst_energy_residual = std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0));
   r.profile = world_.profile();
   return r;
 }

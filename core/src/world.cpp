@@ -11,6 +11,12 @@
 
 namespace runout {
 
+// What one pass over the contacts returns: the guard's largest overlap and, when the energy
+// ledger is on, the energy dissipated this step (J).
+struct PassSums {
+  double worst = 0, loss_normal = 0, loss_friction = 0;
+};
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -155,7 +161,7 @@ void World::rebuild_lists() {
 // coefficient arrays keep every load a plain (gathered) double.
 namespace {
 
-template <class Law>
+template <class Law, bool kLedger>
 struct PairKernel {
   const double* x; const double* y; const double* vx; const double* vy; const double* om;
   const double* r; const std::int32_t* species; const std::int32_t* pi; const std::int32_t* pj;
@@ -165,10 +171,9 @@ struct PairKernel {
   double impact_rate;
   double* overlap_max; double* spring; double* fx; double* fy; double* ft;
 
-  // Returns the largest overlap in units of the smaller radius, for the overlap guard.
-  double operator()(std::int64_t begin, std::int64_t end) const {
-    double worst = 0;
-#pragma omp simd reduction(max : worst)
+  PassSums operator()(std::int64_t begin, std::int64_t end) const {
+    double worst = 0, loss_normal = 0, loss_friction = 0;
+#pragma omp simd reduction(max : worst) reduction(+ : loss_normal, loss_friction)
     for (std::int64_t q = begin; q < end; ++q) {
       const std::int32_t i = pi[q], j = pj[q];
       const double dx = x[j] - x[i], dy = y[j] - y[i];
@@ -187,8 +192,17 @@ struct PairKernel {
       const std::int32_t kind = species[i] * species_count + species[j];
       double history_overlap = overlap_max[q];
       double history_spring = spring[q];
+      const double previous_max = history_overlap;
+      const double trial = history_spring + slip * dt;
       const double fn = Law::force(normal[kind], overlap, overlap_rate, history_overlap);
       const double f_t = tangential_force(tangential[kind], fn, slip * dt, history_spring);
+      if constexpr (kLedger) {
+        // Sliding loses |F_t| times the slip the spring did not take; a contact that ends
+        // banks its committed hysteresis; a dashpot loses its power over the step.
+        loss_friction += touching ? std::abs(f_t * (trial - history_spring)) : 0.0;
+        loss_normal += touching ? Law::dashpot_power(normal[kind], overlap, overlap_rate) * dt
+                                : Law::committed_loss(normal[kind], previous_max);
+      }
       overlap_max[q] = touching ? history_overlap : 0.0;
       spring[q] = touching ? history_spring : 0.0;
       const double fn_on = touching ? fn : 0.0, ft_on = touching ? f_t : 0.0;
@@ -200,14 +214,14 @@ struct PairKernel {
       // a static hysteretic contact.
       worst = std::max(worst, touching && overlap_rate > impact_rate ? overlap / std::min(r[i], r[j]) : 0.0);
     }
-    return worst;
+    return {worst, loss_normal, loss_friction};
   }
 };
 
 }  // namespace
 
-template <class Law>
-double World::pair_forces() {
+template <class Law, bool kLedger>
+PassSums World::pair_forces() {
   const auto& p = particles_;
   auto& c = pairs_;
   const int ns = table_.species_count;
@@ -217,7 +231,7 @@ double World::pair_forces() {
     normal[k] = normal_coefficients<Law>(table_.pair[k]);
     tangential[k] = table_.pair[k].tangential;
   }
-  const PairKernel<Law> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
+  const PairKernel<Law, kLedger> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
                                p.radius.data(), p.species.data(), c.i.data(), c.j.data(),
                                normal.data(), tangential.data(), ns, settings_.dt, settings_.impact_rate,
                                c.overlap_max.data(), c.tangential_spring.data(), c.fx.data(),
@@ -225,25 +239,32 @@ double World::pair_forces() {
   const auto n = static_cast<std::int64_t>(c.size());
   const int threads = settings_.threads;
   if (threads == 1) return kernel(0, n);
-  double worst[kMaxThreads] = {};
+  PassSums part[kMaxThreads] = {};
 #pragma omp parallel num_threads(threads)
   {
     const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
-    worst[t] = kernel(n * t / T, n * (t + 1) / T);
+    part[t] = kernel(n * t / T, n * (t + 1) / T);
   }
-  return *std::max_element(worst, worst + threads);
+  PassSums total;  // combined in thread order (the ledger's sums depend on the thread count)
+  for (int t = 0; t < threads; ++t) {
+    total.worst = std::max(total.worst, part[t].worst);
+    total.loss_normal += part[t].loss_normal;
+    total.loss_friction += part[t].loss_friction;
+  }
+  return total;
 }
 
 // Disc–wall contacts: few, so a plain loop. The wall plays j with zero velocity (SPEC §2).
-template <class Law>
-double World::wall_forces() {
+template <class Law, bool kLedger>
+PassSums World::wall_forces() {
   const auto& p = particles_;
   auto& c = wall_contacts_;
   const auto n = static_cast<std::int64_t>(c.size());
   const double dt = settings_.dt;
-  double worst = 0;
-#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1) \
-    schedule(static) reduction(max : worst)
+  double worst = 0, loss_normal = 0, loss_friction = 0;
+  // Few contacts: one thread, so the ledger's sums are in a fixed order.
+#pragma omp parallel for num_threads(settings_.threads) if (settings_.threads > 1 && !kLedger) \
+    schedule(static) reduction(max : worst) reduction(+ : loss_normal, loss_friction)
   for (std::int64_t q = 0; q < n; ++q) {
     const std::int32_t i = c.disc[q];
     const Segment& s = segments_[c.segment[q]];
@@ -259,9 +280,16 @@ double World::wall_forces() {
     const PairCoefficients& k = table_.wall[p.species[i]];
     double history_overlap = c.overlap_max[q];
     double history_spring = c.tangential_spring[q];
-    const double fn = Law::force(normal_coefficients<Law>(k), overlap, overlap_rate,
-                                 history_overlap);
+    const double previous_max = history_overlap;
+    const double trial = history_spring + slip * dt;
+    const auto coefficients = normal_coefficients<Law>(k);
+    const double fn = Law::force(coefficients, overlap, overlap_rate, history_overlap);
     const double ft = tangential_force(k.tangential, fn, slip * dt, history_spring);
+    if constexpr (kLedger) {
+      loss_friction += touching ? std::abs(ft * (trial - history_spring)) : 0.0;
+      loss_normal += touching ? Law::dashpot_power(coefficients, overlap, overlap_rate) * dt
+                              : Law::committed_loss(coefficients, previous_max);
+    }
     c.overlap_max[q] = touching ? history_overlap : 0.0;
     c.tangential_spring[q] = touching ? history_spring : 0.0;
     const double fn_on = touching ? fn : 0.0, ft_on = touching ? ft : 0.0;
@@ -270,26 +298,29 @@ double World::wall_forces() {
     c.ft[q] = ft_on;
     worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / p.radius[i] : 0.0);
   }
-  return worst;
+  return {worst, loss_normal, loss_friction};
+}
+
+template <class Law>
+void World::compute_forces_with() {
+  auto t0 = Clock::now();
+  const bool ledger = settings_.track_energy;
+  const PassSums pairs = ledger ? pair_forces<Law, true>() : pair_forces<Law, false>();
+  profile_.pair_forces += seconds_since(t0);
+  t0 = Clock::now();
+  const PassSums walls = ledger ? wall_forces<Law, true>() : wall_forces<Law, false>();
+  profile_.wall_forces += seconds_since(t0);
+  ledger_.normal += pairs.loss_normal + walls.loss_normal;
+  ledger_.friction += pairs.loss_friction + walls.loss_friction;
+  check_overlap(std::max(pairs.worst, walls.worst));
 }
 
 void World::compute_forces() {
-  auto t0 = Clock::now();
-  double worst = 0;
   switch (settings_.normal_model) {
-    case NormalModel::walton_braun: worst = pair_forces<WaltonBraun>(); break;
-    case NormalModel::linear_dashpot: worst = pair_forces<LinearDashpot>(); break;
-    case NormalModel::hertz: worst = pair_forces<Hertz>(); break;
+    case NormalModel::walton_braun: compute_forces_with<WaltonBraun>(); break;
+    case NormalModel::linear_dashpot: compute_forces_with<LinearDashpot>(); break;
+    case NormalModel::hertz: compute_forces_with<Hertz>(); break;
   }
-  profile_.pair_forces += seconds_since(t0);
-  t0 = Clock::now();
-  switch (settings_.normal_model) {
-    case NormalModel::walton_braun: worst = std::max(worst, wall_forces<WaltonBraun>()); break;
-    case NormalModel::linear_dashpot: worst = std::max(worst, wall_forces<LinearDashpot>()); break;
-    case NormalModel::hertz: worst = std::max(worst, wall_forces<Hertz>()); break;
-  }
-  profile_.wall_forces += seconds_since(t0);
-  check_overlap(worst);
 }
 
 // SPEC §8: an overlap beyond the guard means the contact is far stiffer-demanding than the
@@ -479,6 +510,44 @@ void World::finish_pass(const PassResult* results) {
     finite = finite && results[t].finite;
   }
   finite_ = finite;
+}
+
+EnergyState World::energy(double reference_y) const {
+  EnergyState e;
+  const auto& p = particles_;
+  const double g = -settings_.gravity.y();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    e.translational += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k]);
+    e.rotational += 0.5 / p.inv_inertia[k] * p.omega[k] * p.omega[k];
+    e.potential += p.mass[k] * g * (p.y[k] - reference_y);
+  }
+  // Springs of the touching contacts; the history arrays hold this step's state.
+  auto add = [&](const PairCoefficients& k, double overlap, double overlap_max, double spring) {
+    e.elastic += 0.5 * k.tangential.k_tangential * spring * spring;
+    switch (settings_.normal_model) {
+      case NormalModel::walton_braun:
+        e.elastic += WaltonBraun::elastic_energy(k.walton_braun, overlap, overlap_max);
+        e.committed_normal += WaltonBraun::committed_loss(k.walton_braun, overlap_max);
+        break;
+      case NormalModel::linear_dashpot: e.elastic += LinearDashpot::elastic_energy(k.linear_dashpot, overlap, 0); break;
+      case NormalModel::hertz: e.elastic += Hertz::elastic_energy(k.hertz, overlap, 0); break;
+    }
+  };
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const std::int32_t i = pairs_.i[q], j = pairs_.j[q];
+    const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+    if (overlap > 0)
+      add(table_.between(p.species[i], p.species[j]), overlap, pairs_.overlap_max[q], pairs_.tangential_spring[q]);
+  }
+  for (std::size_t q = 0; q < wall_contacts_.size(); ++q) {
+    const std::int32_t i = wall_contacts_.disc[q];
+    const Segment& s = segments_[wall_contacts_.segment[q]];
+    const SegmentProjection proj = project(s, {p.x[i], p.y[i]});
+    const double overlap = p.radius[i] - (proj.point - Eigen::Vector2d(p.x[i], p.y[i])).norm();
+    if (s.active && !proj.at_free_end && overlap > 0)
+      add(table_.wall[p.species[i]], overlap, wall_contacts_.overlap_max[q], wall_contacts_.tangential_spring[q]);
+  }
+  return e;
 }
 
 void World::check_escape(double margin) const {

@@ -33,6 +33,18 @@ struct WaltonBraun {
     const double unloading = c.k_unload * overlap - (c.k_unload - c.k_load) * overlap_max;
     return std::max(0.0, std::min(c.k_load * overlap, unloading));
   }
+  // Energy ledger: the spring energy held now, and the loss already committed by having
+  // reached overlap_max (area between the loading and unloading lines).
+  static double elastic_energy(const Coefficients& c, double overlap, double overlap_max) {
+    if (overlap >= overlap_max) return 0.5 * c.k_load * overlap * overlap;
+    const double stretch = std::max(0.0, overlap - overlap_max * (1.0 - c.k_load / c.k_unload));
+    return 0.5 * c.k_unload * stretch * stretch;
+  }
+  static double committed_loss(const Coefficients& c, double overlap_max) {
+    return 0.5 * c.k_load * overlap_max * overlap_max * (1.0 - c.k_load / c.k_unload);
+  }
+  // Power lost in a dashpot (none: the loss is the hysteresis above).
+  static double dashpot_power(const Coefficients&, double, double) { return 0.0; }
 };
 
 // Linear spring–dashpot with the no-tension cut: F = k overlap + damping * overlap_rate, F >= 0.
@@ -46,6 +58,16 @@ struct LinearDashpot {
   static constexpr bool has_history = false;
   static double force(const Coefficients& c, double overlap, double overlap_rate, double&) {
     return std::max(0.0, c.k * overlap + c.damping * overlap_rate);
+  }
+  static double elastic_energy(const Coefficients& c, double overlap, double) {
+    return 0.5 * c.k * overlap * overlap;
+  }
+  static double committed_loss(const Coefficients&, double) { return 0.0; }
+  // While the force is positive the dashpot dissipates damping * rate^2; once the no-tension
+  // cut holds the force at zero, the spring's energy is lost instead (a small, first-order
+  // error in the ledger, in its residual).
+  static double dashpot_power(const Coefficients& c, double overlap, double overlap_rate) {
+    return c.k * overlap + c.damping * overlap_rate > 0 ? c.damping * overlap_rate * overlap_rate : 0.0;
   }
 };
 
@@ -61,6 +83,16 @@ struct Hertz {
   static double force(const Coefficients& c, double overlap, double overlap_rate, double&) {
     const double root = std::sqrt(std::max(overlap, 0.0));
     return std::max(0.0, c.k * overlap * root + c.damping * std::sqrt(root) * overlap_rate);
+  }
+  static double elastic_energy(const Coefficients& c, double overlap, double) {
+    const double o = std::max(overlap, 0.0);
+    return 0.4 * c.k * o * o * std::sqrt(o);
+  }
+  static double committed_loss(const Coefficients&, double) { return 0.0; }
+  static double dashpot_power(const Coefficients& c, double overlap, double overlap_rate) {
+    const double root = std::sqrt(std::max(overlap, 0.0));
+    const double damping = c.damping * std::sqrt(root);
+    return c.k * overlap * root + damping * overlap_rate > 0 ? damping * overlap_rate * overlap_rate : 0.0;
   }
 };
 

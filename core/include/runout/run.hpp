@@ -24,6 +24,13 @@ struct TimeseriesRow {
   double small_mean_height = 0, large_mean_height = 0;  // in d, above the bed
   double basal_spin = 0;      // omega sqrt(d/g) of small discs touching the bed
   double front_x = 0;         // farthest disc edge, in d
+  // Energy ledger since release, each over Ep0 (SPEC §8): E_total(0) = ep + ek + erot + elastic
+  // + dissipated_normal + dissipated_friction + residual; the residual is the integrator's error.
+  double ep_over_ep0 = 0;
+  double elastic_over_ep0 = 0;
+  double dissipated_normal_over_ep0 = 0;
+  double dissipated_friction_over_ep0 = 0;
+  double residual_over_ep0 = 0;
 };
 
 // Translational kinetic energy of the discs that touch at least one other disc (the mass; a
@@ -65,6 +72,8 @@ struct RunResult {
   BasalLayer basal_layer;
   double H_layer_over_d = 0, H_layer_over_d_spread = 0;
   double final_basal_spin = 0;
+  TimeseriesRow final_energy;        // the ledger at the end
+  double worst_energy_residual = 0;  // largest |residual| / Ep0 over the run
   StepProfile profile;
 };
 
@@ -79,6 +88,9 @@ struct RunState {
   double next_sample = 0;
   std::vector<TimeseriesRow> series;
   double wall_seconds = 0;  // spent before a resume
+  // Ledger origin at release: total energy, committed hysteresis and dissipation counters.
+  double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0;
+  double worst_residual = 0;  // largest |residual| / Ep0 seen
 };
 std::string encode_run_state(const RunState& s);
 RunState decode_run_state(const std::string& bytes, const std::string& name);

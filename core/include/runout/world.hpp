@@ -36,6 +36,7 @@ struct StepSettings {
   // needs and discs may pass through each other.
   double overlap_guard = 1.0;
   double impact_rate = 0;  // m/s: only contacts loading faster than this are guarded
+  bool track_energy = false;  // keep the dissipation ledger (costs a little in the pair pass)
 };
 
 // Wall-clock seconds spent in each phase since construction.
@@ -46,6 +47,20 @@ struct StepProfile {
 
 struct ForceSum;
 struct PassResult;
+struct PassSums;
+
+// Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
+// ended, or dashpot work) and Coulomb sliding. Kept only with StepSettings::track_energy.
+struct Dissipation {
+  double normal = 0, friction = 0;
+};
+
+// The energy ledger at one instant (SPEC §8): kinetic, potential above `reference_y`, elastic
+// (normal springs + tangential springs), and the loss committed by live Walton–Braun contacts.
+struct EnergyState {
+  double translational = 0, rotational = 0, potential = 0;
+  double elastic = 0, committed_normal = 0;
+};
 
 inline constexpr int kMaxThreads = 256;
 
@@ -63,6 +78,10 @@ class World {
   const PairContacts& pairs() const { return pairs_; }
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   const StepProfile& profile() const { return profile_; }
+  const Dissipation& dissipation() const { return ledger_; }
+  void set_track_energy(bool on) { settings_.track_energy = on; }
+  void set_dissipation(const Dissipation& d) { ledger_ = d; }
+  EnergyState energy(double reference_y) const;
   double time() const { return time_; }            // s since the clock was last set
   std::int64_t step_count() const { return steps_; }
 
@@ -88,8 +107,9 @@ class World {
   void rebuild_lists();
   void reorder_discs();
   void compute_forces();
-  template <class Law> double pair_forces();  // returns the largest overlap / smaller radius
-  template <class Law> double wall_forces();
+  template <class Law> void compute_forces_with();
+  template <class Law, bool kLedger> struct PassSums pair_forces();
+  template <class Law, bool kLedger> struct PassSums wall_forces();
   ForceSum force_sum() const;
   void finish_pass(const PassResult* results);
   void integrate_symplectic_euler();
@@ -111,6 +131,7 @@ class World {
   PairContacts pairs_;
   WallContacts wall_contacts_;
   StepProfile profile_;
+  Dissipation ledger_;
   double time_ = 0;
   std::int64_t steps_ = 0;
 

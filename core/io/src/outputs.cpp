@@ -54,6 +54,15 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["H_layer_over_d_windows"] = windows;  // L1, 3/4 L1, 1/2 L1, 1/4 L1
   j["deposit_L1"] = number(r.basal_layer.deposit_end - r.basal_layer.deposit_start);
   j["final_basal_spin"] = number(r.final_basal_spin);
+  const auto& e = r.final_energy;
+  j["energy_over_ep0"] = {{"kinetic", number(e.ek_over_ep0)},
+                          {"rotational", number(e.erot_over_ep0)},
+                          {"potential", number(e.ep_over_ep0)},
+                          {"elastic", number(e.elastic_over_ep0)},
+                          {"dissipated_normal", number(e.dissipated_normal_over_ep0)},
+                          {"dissipated_friction", number(e.dissipated_friction_over_ep0)},
+                          {"residual", number(e.residual_over_ep0)},
+                          {"worst_residual", number(r.worst_energy_residual)}};
   j["wall_seconds"] = r.wall_seconds;
   j["preparation_seconds"] = c.preparation_seconds;
   j["pile_from_cache"] = c.pile_from_cache;
@@ -71,12 +80,14 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
 std::string timeseries_csv(const std::vector<TimeseriesRow>& rows) {
   std::string out =
       "t_star,ek_over_ep0,erot_over_ep0,x_cm,y_cm,small_mean_height,large_mean_height,"
-      "basal_spin,front_x\n";
+      "basal_spin,front_x,ep_over_ep0,elastic_over_ep0,dissipated_normal_over_ep0,"
+      "dissipated_friction_over_ep0,residual_over_ep0\n";
   char line[512];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", r.t_star,
-                  r.ek_over_ep0, r.erot_over_ep0, r.x_cm, r.y_cm, r.small_mean_height,
-                  r.large_mean_height, r.basal_spin, r.front_x);
+    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.3e\n",
+                  r.t_star, r.ek_over_ep0, r.erot_over_ep0, r.x_cm, r.y_cm, r.small_mean_height,
+                  r.large_mean_height, r.basal_spin, r.front_x, r.ep_over_ep0, r.elastic_over_ep0,
+                  r.dissipated_normal_over_ep0, r.dissipated_friction_over_ep0, r.residual_over_ep0);
     out += line;
   }
   return out;
