@@ -172,6 +172,18 @@ struct PairKernel {
   double* overlap_max; double* spring; double* fx; double* fy; double* ft;
 
   PassSums operator()(std::int64_t begin, std::int64_t end) const {
+    // Locals, so the compiler knows the stores below cannot move these pointers.
+    const double* __restrict x = this->x; const double* __restrict y = this->y;
+    const double* __restrict vx = this->vx; const double* __restrict vy = this->vy;
+    const double* __restrict om = this->om; const double* __restrict r = this->r;
+    const std::int32_t* __restrict species = this->species;
+    const std::int32_t* __restrict pi = this->pi; const std::int32_t* __restrict pj = this->pj;
+    const typename Law::Coefficients* __restrict normal = this->normal;
+    const CundallStrack* __restrict tangential = this->tangential;
+    double* __restrict overlap_max = this->overlap_max; double* __restrict spring = this->spring;
+    double* __restrict fx = this->fx; double* __restrict fy = this->fy; double* __restrict ft = this->ft;
+    const int species_count = this->species_count;
+    const double dt = this->dt, impact_rate = this->impact_rate;
     double worst = 0, loss_normal = 0, loss_friction = 0;
 #pragma omp simd reduction(max : worst) reduction(+ : loss_normal, loss_friction)
     for (std::int64_t q = begin; q < end; ++q) {
