@@ -5,23 +5,10 @@
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/setup.hpp"
+#include "test_helpers.hpp"
 
 namespace runout {
 namespace {
-
-SceneDef small_pile() {
-  SceneDef s;
-  s.species = {{"large", 1.0, 0.1, 0.5}, {"small", 0.5, 0.1, 0.5}};
-  AvalancheDef a;
-  a.incline_length = 6.0;
-  a.pile_width = 4.0;
-  a.floor_length = 20.0;
-  a.wall_height = 15.0;
-  a.reference_large_count = 30;
-  s.avalanche = a;
-  s.preparation.settle_ek_threshold = 1e-5;
-  return s;
-}
 
 void advance(World& w, double seconds) {
   while (w.time() < seconds) w.step();
@@ -29,7 +16,7 @@ void advance(World& w, double seconds) {
 
 TEST(Checkpoint, ResumeIsBitIdentical) {
   for (IntegratorKind integrator : {IntegratorKind::symplectic_euler, IntegratorKind::velocity_verlet}) {
-    SceneDef s = small_pile();
+    SceneDef s = testing::small_pile();
     s.integration.integrator = integrator;
     const SceneSetup setup = derive_setup(s);
     World straight = build_settled_pile(s, setup, 1);
@@ -54,7 +41,7 @@ TEST(Checkpoint, ResumeIsBitIdentical) {
 }
 
 TEST(Checkpoint, DamageIsDetected) {
-  const SceneDef s = small_pile();
+  const SceneDef s = testing::small_pile();
   const SceneSetup setup = derive_setup(s);
   World w = build_settled_pile(s, setup, 1);
   const std::string good = encode_checkpoint(w, 7, "");

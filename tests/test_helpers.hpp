@@ -20,4 +20,19 @@ inline ParticleDef disc(double x, double y, double diameter, int species = 0, do
   return p;
 }
 
+// A small thesis-like pile (30 large-disc areas, D/d = 2) that settles in well under a second.
+inline SceneDef small_pile() {
+  SceneDef s;
+  s.species = {{"large", 1.0, 0.1, 0.6}, {"small", 0.5, 0.1, 0.4}};
+  AvalancheDef a;
+  a.incline_length = 6.0;
+  a.pile_width = 4.0;
+  a.floor_length = 20.0;
+  a.wall_height = 15.0;
+  a.reference_large_count = 30;
+  s.avalanche = a;
+  s.preparation.settle_ek_threshold = 1e-5;
+  return s;
+}
+
 }  // namespace runout::testing

@@ -32,16 +32,7 @@ TEST(Ledger, BinaryCollisionLosesOneMinusEnSquared) {
 }
 
 SceneDef small_pile(double dt_fraction) {
-  SceneDef s;
-  s.species = {{"large", 1.0, 0.1, 0.5}, {"small", 0.5, 0.1, 0.5}};
-  AvalancheDef a;
-  a.incline_length = 6.0;
-  a.pile_width = 4.0;
-  a.floor_length = 25.0;
-  a.wall_height = 15.0;
-  a.reference_large_count = 30;
-  s.avalanche = a;
-  s.preparation.settle_ek_threshold = 1e-5;
+  SceneDef s = testing::small_pile();
   s.integration.dt_fraction = dt_fraction;
   s.output.end_time = 30.0;
   return s;

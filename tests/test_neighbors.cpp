@@ -105,23 +105,9 @@ TEST(ContactHistory, SurvivesNeighbourListRebuilds) {
   EXPECT_NEAR(spring_often, expected, 0.02 * expected);
 }
 
-SceneDef small_pile() {
-  SceneDef s;
-  s.species = {{"large", 1.0, 0.1, 0.6}, {"small", 0.5, 0.1, 0.4}};
-  AvalancheDef a;
-  a.incline_length = 6.0;
-  a.pile_width = 4.0;
-  a.floor_length = 20.0;
-  a.wall_height = 15.0;
-  a.reference_large_count = 30;
-  s.avalanche = a;
-  s.preparation.settle_ek_threshold = 1e-5;
-  return s;
-}
-
 // The state after `t_star` of flow, with `threads` threads and the given skin.
 Particles flow(double skin, int threads, double t_star) {
-  SceneDef s = small_pile();
+  SceneDef s = testing::small_pile();
   s.integration.skin = skin;
   const SceneSetup setup = derive_setup(s);
   World w = build_settled_pile(s, setup, threads);
@@ -157,7 +143,7 @@ namespace {
 
 // Renumbering moves discs in the arrays; every disc must keep its own size and mass.
 TEST(Renumbering, SettledPileKeepsEachDiscsSize) {
-  SceneDef s = small_pile();
+  SceneDef s = testing::small_pile();
   s.species[0].spread = s.species[1].spread = 0.0;
   const SceneSetup setup = derive_setup(s);
   const World w = build_settled_pile(s, setup, 1);
