@@ -7,15 +7,10 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "runout/render/gl_renderer.hpp"
-#include "runout/render/idle_thread.hpp"
+#include "runout/render/idle_worker.hpp"
 
 namespace runout::render {
 
@@ -41,12 +36,7 @@ struct VideoWriter::Impl {
   AVPacket* packet = nullptr;
   long next_pts = 0;
 
-  std::mutex mutex;
-  std::condition_variable changed;
-  std::deque<Image> queue;
-  bool closing = false, done = false, abandon = false;
-  std::exception_ptr error;
-  std::thread worker;
+  std::unique_ptr<IdleWorker<Image>> worker;  // converts and encodes off the simulation thread
 
   ~Impl() {
     if (sws) sws_freeContext(sws);
@@ -82,42 +72,14 @@ struct VideoWriter::Impl {
     drain_packets();
   }
 
-  void run() {
-    run_when_idle();
-    try {
-      for (;;) {
-        Image image;
-        {
-          std::unique_lock lock(mutex);
-          changed.wait(lock, [&] { return !queue.empty() || closing; });
-          if (queue.empty()) break;
-          image = std::move(queue.front());
-          queue.pop_front();
-        }
-        changed.notify_all();
-        encode(image);
-      }
-      bool abandoned;
-      {
-        std::lock_guard lock(mutex);
-        abandoned = abandon;
-      }
-      if (abandoned) throw RenderError("video: abandoned");
-      avcodec_send_frame(codec, nullptr);  // flush
-      drain_packets();
-      const int t = av_write_trailer(format);
-      if (t < 0) throw RenderError("video: cannot finish " + path + ": " + av_error(t));
-      avio_closep(&format->pb);
-      if (std::rename(temp_path.c_str(), path.c_str()) != 0)
-        throw RenderError("video: cannot move the finished file to " + path);
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      error = std::current_exception();
-      queue.clear();
-    }
-    std::lock_guard lock(mutex);
-    done = true;
-    changed.notify_all();
+  void close() {
+    avcodec_send_frame(codec, nullptr);  // flush
+    drain_packets();
+    const int t = av_write_trailer(format);
+    if (t < 0) throw RenderError("video: cannot finish " + path + ": " + av_error(t));
+    avio_closep(&format->pb);
+    if (std::rename(temp_path.c_str(), path.c_str()) != 0)
+      throw RenderError("video: cannot move the finished file to " + path);
   }
 };
 
@@ -182,45 +144,22 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
   m.frame->width = width;
   m.frame->height = height;
   if (!m.frame || !m.packet || av_frame_get_buffer(m.frame, 0) < 0) throw RenderError("video: out of memory");
-  m.worker = std::thread([&m] { m.run(); });
+  m.worker = std::make_unique<IdleWorker<Image>>(
+      static_cast<std::size_t>(options.queue_frames), [&m](Image& image) { m.encode(image); },
+      [&m] { m.close(); });
 }
 
 VideoWriter::~VideoWriter() {
-  auto& m = *impl_;
-  if (m.worker.joinable()) {
-    {  // never finished: not a whole movie, so no file under its name
-      std::lock_guard lock(m.mutex);
-      m.queue.clear();
-      m.closing = true;
-      m.abandon = true;
-    }
-    m.changed.notify_all();
-    m.worker.join();
-  }
-  std::remove(m.temp_path.c_str());
+  impl_->worker.reset();  // abandons an unfinished movie: no file under its name
+  std::remove(impl_->temp_path.c_str());
 }
 
 void VideoWriter::write(Image frame) {
-  auto& m = *impl_;
-  if (frame.width != m.width || frame.height != m.height) throw RenderError("video: frame size changed");
-  std::unique_lock lock(m.mutex);
-  m.changed.wait(lock, [&] { return static_cast<int>(m.queue.size()) < m.options.queue_frames || m.done; });
-  if (m.error) std::rethrow_exception(m.error);
-  m.queue.push_back(std::move(frame));
-  lock.unlock();
-  m.changed.notify_all();
+  if (frame.width != impl_->width || frame.height != impl_->height) throw RenderError("video: frame size changed");
+  impl_->worker->push(std::move(frame));
 }
 
-void VideoWriter::finish() {
-  auto& m = *impl_;
-  {
-    std::lock_guard lock(m.mutex);
-    m.closing = true;
-  }
-  m.changed.notify_all();
-  if (m.worker.joinable()) m.worker.join();
-  if (m.error) std::rethrow_exception(m.error);
-}
+void VideoWriter::finish() { impl_->worker->finish(); }
 
 long VideoWriter::frames_written() const { return impl_->next_pts; }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runout/render/frame.hpp"
+#include "runout/render/idle_worker.hpp"
 #include "runout/render/video.hpp"
 #include "runout/run.hpp"
 
@@ -25,14 +26,19 @@ class MovieRecorder : public Observer {
   void observe(const World& world, double t_star) override;
   void finish();  // draws what is queued and completes the video file; rethrows worker errors
   long frames() const { return frames_; }
-  // Seconds the drawing thread spent drawing and writing PNGs.
-  double draw_seconds() const;
+  // Seconds the helper thread spent drawing and writing PNGs.
+  double draw_seconds() const { return draw_seconds_; }
 
  private:
-  struct Worker;
+  void draw(const FramePlan& plan);
+
   FrameMaker maker_;
-  std::unique_ptr<Worker> worker_;
-  long frames_ = 0;
+  std::optional<VideoWriter> video_;
+  std::string png_dir_;
+  bool keep_alpha_ = false;
+  long frames_ = 0, drawn_ = 0;
+  double draw_seconds_ = 0;
+  std::unique_ptr<IdleWorker<FramePlan>> worker_;  // last: stops before the members it uses
 };
 
 // Writes DIR/snapshot_t<T>.png for each requested T (the frame is the step nearest T; its stamp
