@@ -19,6 +19,7 @@ namespace {
 int render_command(const RenderOptions&) { refuse(); }
 int bench_frames(World&, const SceneDef&, const SceneSetup&, const PictureOptions&, long long, long long) { refuse(); }
 int compare_command(const CompareOptions&) { refuse(); }
+void plot_study(const std::vector<StudyPoint>&, const std::string&, const std::string&) { refuse(); }
 std::unique_ptr<PictureSession> attach_pictures(const PictureOptions&, AvalancheRun&, const SceneDef&,
                                                 const SceneSetup&, const std::string&) {
   refuse();

@@ -12,6 +12,7 @@
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
 #include "runout/io/scene_file.hpp"
+#include "runout/render/colormap.hpp"
 #include "runout/render/recorders.hpp"
 #include "runout/setup.hpp"
 
@@ -164,6 +165,49 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
   std::printf("draw_plus_png_ms: %.2f\n", 1000 * (draw + png) / n);
   std::printf("draw_plus_video_ms: %.2f\n", 1000 * (draw + encode) / n);
   return 0;
+}
+
+void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path) {
+  const int W = 960, H = 600, left = 90, right = 30, top = 50, bottom = 70;
+  render::Image img(W, H);
+  render::TextRenderer text;
+  const render::Rgba ink{30, 30, 30, 255}, grid{225, 225, 225, 255};
+  double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
+  for (const auto& p : points) {
+    x0 = std::min(x0, p.wall_seconds); x1 = std::max(x1, p.wall_seconds);
+    if (p.mu_error > 0) { y0 = std::min(y0, p.mu_error); y1 = std::max(y1, p.mu_error); }
+  }
+  if (y1 <= 0) { y0 = 1e-4; y1 = 1e-1; }
+  const double lx0 = std::floor(std::log10(x0)), lx1 = std::ceil(std::log10(x1) + 1e-9);
+  const double ly0 = std::floor(std::log10(y0)), ly1 = std::ceil(std::log10(y1) + 1e-9);
+  auto px = [&](double x) { return left + (std::log10(x) - lx0) / std::max(lx1 - lx0, 1.0) * (W - left - right); };
+  auto py = [&](double y) { return H - bottom - (std::log10(y) - ly0) / std::max(ly1 - ly0, 1.0) * (H - top - bottom); };
+  for (double d = lx0; d <= lx1; ++d) {
+    const int x = static_cast<int>(px(std::pow(10, d)));
+    img.fill_rect(x, top, x + 1, H - bottom, grid);
+    char l[16]; std::snprintf(l, sizeof l, "%g", std::pow(10, d));
+    text.draw(img, x - text.width(l, 14) / 2, H - bottom + 20, l, 14, ink);
+  }
+  for (double d = ly0; d <= ly1; ++d) {
+    const int y = static_cast<int>(py(std::pow(10, d)));
+    img.fill_rect(left, y, W - right, y + 1, grid);
+    char l[16]; std::snprintf(l, sizeof l, "%g", std::pow(10, d));
+    text.draw(img, left - 8 - text.width(l, 14), y + 5, l, 14, ink);
+  }
+  img.fill_rect(left, H - bottom, W - right, H - bottom + 2, ink);
+  img.fill_rect(left - 2, top, left, H - bottom, ink);
+  text.draw(img, (W - text.width(title, 18)) / 2, 30, title, 18, ink);
+  const std::string xl = "wall time of the run (s)", yl = "|mu - mu_reference| (0 drawn at the bottom)";
+  text.draw(img, (W - text.width(xl, 15)) / 2, H - 20, xl, 15, ink);
+  text.draw(img, left, top - 6, yl, 13, ink);
+  for (const auto& p : points) {
+    const double cx = px(p.wall_seconds), cy = p.mu_error > 0 ? py(p.mu_error) : H - bottom - 4;
+    for (int y = static_cast<int>(cy) - 6; y <= cy + 6; ++y)
+      for (int x = static_cast<int>(cx) - 6; x <= cx + 6; ++x)
+        img.blend(x, y, render::palette::kLarge, std::clamp(5.0 - std::hypot(x + 0.5 - cx, y + 0.5 - cy) + 0.5, 0.0, 1.0));
+    text.draw(img, static_cast<int>(cx) + 8, static_cast<int>(cy) - 6, p.label, 12, ink);
+  }
+  render::write_png(path, img);
 }
 
 int compare_command(const CompareOptions& o) {

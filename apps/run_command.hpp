@@ -34,7 +34,18 @@ struct BenchOptions {
   PictureOptions picture;
 };
 
+struct StudyOptions {
+  std::string scene_path;  // empty: the embedded quick pile
+  std::string out_dir;
+  int threads = 1;
+  std::string cache_dir;
+  std::vector<std::string> overrides;
+};
+
 int run_command(const RunOptions& o);    // returns the process exit code
+// `runout study accuracy`: one scene over a grid of the speed/accuracy knobs, every run from
+// the same settled pile; writes study.csv, study.md and study.png into the output folder.
+int study_command(const StudyOptions& o);
 int bench_command(const BenchOptions& o);
 
 }  // namespace runout::app

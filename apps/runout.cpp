@@ -47,6 +47,16 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--preset", bench.picture.preset, "x264 preset for --frames");
   bench_cmd->add_option("--crf", bench.picture.crf, "x264 crf for --frames")->check(CLI::Range(0, 51));
 
+  runout::app::StudyOptions study;
+  auto* study_cmd = cli.add_subcommand("study", "speed against accuracy over the knobs: study accuracy [SCENE] --out DIR");
+  auto* accuracy_cmd = study_cmd->add_subcommand("accuracy", "run one scene over dt fraction, stiffness, integrator and model");
+  study_cmd->require_subcommand(1);
+  accuracy_cmd->add_option("scene", study.scene_path, "scene (default: the embedded quick pile)")->check(CLI::ExistingFile);
+  accuracy_cmd->add_option("--out,-o", study.out_dir, "output folder")->required();
+  accuracy_cmd->add_option("--threads", study.threads, "OpenMP threads")->check(CLI::Range(1, 256));
+  accuracy_cmd->add_option("--set", study.overrides, "override a scene key")->take_all();
+  accuracy_cmd->add_option("--cache-dir", study.cache_dir, "settled-pile cache (default ~/.cache/runout)");
+
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
@@ -75,6 +85,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return runout::app::run_command(run);
     if (*bench_cmd) return runout::app::bench_command(bench);
     if (*render_cmd) return runout::app::render_command(render);
+    if (*study_cmd) return runout::app::study_command(study);
     if (*compare_cmd) return runout::app::compare_command(compare);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "runout: error: %s\n", e.what());

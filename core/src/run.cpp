@@ -18,6 +18,7 @@ std::string encode_run_state(const RunState& s) {
   w.put(s.wall_seconds);
   w.put(s.energy_total0); w.put(s.committed0); w.put(s.dissipated_normal0); w.put(s.dissipated_friction0);
   w.put(s.worst_residual);
+  w.put(s.max_overlap);
   w.put_vector(s.series);
   return w.bytes();
 }
@@ -34,6 +35,7 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   s.energy_total0 = r.get<double>(); s.committed0 = r.get<double>();
   s.dissipated_normal0 = r.get<double>(); s.dissipated_friction0 = r.get<double>();
   s.worst_residual = r.get<double>();
+  s.max_overlap = r.get<double>();
   s.series = r.get_vector<TimeseriesRow>();
   return s;
 }
@@ -126,6 +128,12 @@ TimeseriesRow AvalancheRun::sample() const {
   row.large_mean_height = h.large / d;
   row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   row.front_x = farthest_edge_x(p) / d;
+  const auto& c = world_.pairs();
+  for (std::size_t q = 0; q < c.size(); ++q) {
+    const std::int32_t i = c.i[q], j = c.j[q];
+    const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+    row.max_overlap = std::max(row.max_overlap, overlap / std::min(p.radius[i], p.radius[j]));
+  }
   const EnergyState e = world_.energy(state_.energy_reference_y);
   const Dissipation& lost = world_.dissipation();
   const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
@@ -194,6 +202,7 @@ RunResult AvalancheRun::run() {
     if (t_star() >= state_.next_sample - 0.5 * setup_.dt / setup_.unit_time) {
       state_.series.push_back(sample());
       state_.worst_residual = std::max(state_.worst_residual, std::abs(state_.series.back().residual_over_ep0));
+      state_.max_overlap = std::max(state_.max_overlap, state_.series.back().max_overlap);
       while (state_.next_sample <= t_star() + 0.5 * setup_.dt / setup_.unit_time)
         state_.next_sample += scene_.output.timeseries_every;
     }
@@ -261,6 +270,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   r.final_energy = sample();
   r.worst_energy_residual = std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0));
+  r.max_overlap = std::max(state_.max_overlap, r.final_energy.max_overlap);
   r.profile = world_.profile();
   return r;
 }

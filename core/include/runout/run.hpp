@@ -31,6 +31,7 @@ struct TimeseriesRow {
   double dissipated_normal_over_ep0 = 0;
   double dissipated_friction_over_ep0 = 0;
   double residual_over_ep0 = 0;
+  double max_overlap = 0;  // largest overlap / smaller radius among touching disc pairs now
 };
 
 // Translational kinetic energy of the discs that touch at least one other disc (the mass; a
@@ -74,6 +75,7 @@ struct RunResult {
   double final_basal_spin = 0;
   TimeseriesRow final_energy;        // the ledger at the end
   double worst_energy_residual = 0;  // largest |residual| / Ep0 over the run
+  double max_overlap = 0;            // largest overlap / smaller radius seen in the samples
   StepProfile profile;
 };
 
@@ -91,6 +93,7 @@ struct RunState {
   // Ledger origin at release: total energy, committed hysteresis and dissipation counters.
   double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0;
   double worst_residual = 0;  // largest |residual| / Ep0 seen
+  double max_overlap = 0;     // largest overlap / smaller radius seen in the samples
 };
 std::string encode_run_state(const RunState& s);
 RunState decode_run_state(const std::string& bytes, const std::string& name);

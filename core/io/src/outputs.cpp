@@ -54,6 +54,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["H_layer_over_d_windows"] = windows;  // L1, 3/4 L1, 1/2 L1, 1/4 L1
   j["deposit_L1"] = number(r.basal_layer.deposit_end - r.basal_layer.deposit_start);
   j["final_basal_spin"] = number(r.final_basal_spin);
+  j["max_overlap_over_radius"] = number(r.max_overlap);
   const auto& e = r.final_energy;
   j["energy_over_ep0"] = {{"kinetic", number(e.ek_over_ep0)},
                           {"rotational", number(e.erot_over_ep0)},
@@ -81,13 +82,14 @@ std::string timeseries_csv(const std::vector<TimeseriesRow>& rows) {
   std::string out =
       "t_star,ek_over_ep0,erot_over_ep0,x_cm,y_cm,small_mean_height,large_mean_height,"
       "basal_spin,front_x,ep_over_ep0,elastic_over_ep0,dissipated_normal_over_ep0,"
-      "dissipated_friction_over_ep0,residual_over_ep0\n";
+      "dissipated_friction_over_ep0,residual_over_ep0,max_overlap\n";
   char line[512];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.3e\n",
+    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.3e,%.4g\n",
                   r.t_star, r.ek_over_ep0, r.erot_over_ep0, r.x_cm, r.y_cm, r.small_mean_height,
                   r.large_mean_height, r.basal_spin, r.front_x, r.ep_over_ep0, r.elastic_over_ep0,
-                  r.dissipated_normal_over_ep0, r.dissipated_friction_over_ep0, r.residual_over_ep0);
+                  r.dissipated_normal_over_ep0, r.dissipated_friction_over_ep0, r.residual_over_ep0,
+                  r.max_overlap);
     out += line;
   }
   return out;
