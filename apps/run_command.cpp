@@ -258,7 +258,7 @@ int study_command(const StudyOptions& o) {
   variants.push_back({"normal_model", "linear_dashpot", [](SceneDef& s) { s.contact.normal_model = NormalModel::linear_dashpot; }});
   variants.push_back({"normal_model", "hertz", [](SceneDef& s) { s.contact.normal_model = NormalModel::hertz; }});
   // The reference: the finest step and the stiffest contacts together.
-  variants.push_back({"reference", "dt 0.025, overlap 0.0025", [](SceneDef& s) {
+  variants.push_back({"reference", "dt 0.025 + overlap 0.0025", [](SceneDef& s) {
                         s.integration.dt_fraction = 0.025;
                         s.contact.design_max_overlap = 0.0025;
                       }});
