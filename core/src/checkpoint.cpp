@@ -34,12 +34,20 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   std::vector<std::uint8_t> active;
   for (const auto& s : world.segments()) active.push_back(s.active ? 1 : 0);
   w.put_vector(active);
+  // A world that has not stepped yet has no lists: write empty rows for every disc.
+  const std::vector<std::int32_t> no_rows(p.size() + 1, 0);
   const PairContacts& c = world.pairs();
-  w.put_vector(c.row_start); w.put_vector(c.j); w.put_vector(c.overlap_max);
-  w.put_vector(c.tangential_spring);
+  const bool pairs_built = c.row_start.size() == p.size() + 1;
+  w.put_vector(pairs_built ? c.row_start : no_rows);
+  w.put_vector(pairs_built ? c.j : std::vector<std::int32_t>{});
+  w.put_vector(pairs_built ? c.overlap_max : std::vector<double>{});
+  w.put_vector(pairs_built ? c.tangential_spring : std::vector<double>{});
   const WallContacts& wc = world.wall_contacts();
-  w.put_vector(wc.row_start); w.put_vector(wc.segment); w.put_vector(wc.overlap_max);
-  w.put_vector(wc.tangential_spring);
+  const bool walls_built = wc.row_start.size() == p.size() + 1;
+  w.put_vector(walls_built ? wc.row_start : no_rows);
+  w.put_vector(walls_built ? wc.segment : std::vector<std::int32_t>{});
+  w.put_vector(walls_built ? wc.overlap_max : std::vector<double>{});
+  w.put_vector(walls_built ? wc.tangential_spring : std::vector<double>{});
   w.put_string(run_state);
 
   std::string out(kMagic, sizeof(kMagic));
