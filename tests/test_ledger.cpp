@@ -31,6 +31,26 @@ TEST(Ledger, BinaryCollisionLosesOneMinusEnSquared) {
   EXPECT_EQ(w.dissipation().friction, 0.0);
 }
 
+// The same balance for the linear dashpot, whose loss is its damping work plus the spring
+// energy the no-tension cut throws away.
+TEST(Ledger, DashpotCollisionBalances) {
+  SceneDef s = testing::two_species_scene(1.0, 1.0);
+  s.contact.normal_model = NormalModel::linear_dashpot;
+  s.integration.dt_fraction = 0.002;
+  s.particles = {testing::disc(0.0, 0.0, 1.0, 0, 1.0, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -1.0, 0.0)};
+  const SceneSetup setup = derive_setup(s);
+  World w = build_explicit_world(s, setup, 1);
+  StepSettings st = w.settings();
+  st.gravity = {0, 0};
+  st.track_energy = true;
+  w = World(w.particles(), w.segments(), w.table(), st);
+  const double ke0 = w.energy(0).translational;
+  while (w.time() < 0.05) w.step();
+  const EnergyState e = w.energy(0);
+  EXPECT_NEAR(e.translational + e.elastic + w.dissipation().normal, ke0, 1e-2 * ke0);
+  EXPECT_NEAR(w.dissipation().normal, (1 - 0.04) * ke0, 1e-2 * ke0);
+}
+
 SceneDef small_pile(double dt_fraction) {
   SceneDef s = testing::small_pile();
   s.integration.dt_fraction = dt_fraction;

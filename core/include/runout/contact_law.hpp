@@ -63,11 +63,12 @@ struct LinearDashpot {
     return 0.5 * c.k * overlap * overlap;
   }
   static double committed_loss(const Coefficients&, double) { return 0.0; }
-  // While the force is positive the dashpot dissipates damping * rate^2; once the no-tension
-  // cut holds the force at zero, the spring's energy is lost instead (a small, first-order
-  // error in the ledger, in its residual).
+  // Power lost: the force's power on the contact minus the spring's, (F - k overlap) rate.
+  // That is damping * rate^2 while the force is positive, and the spring's own energy while the
+  // no-tension cut holds the force at zero during unloading (nothing gives it back).
   static double dashpot_power(const Coefficients& c, double overlap, double overlap_rate) {
-    return c.k * overlap + c.damping * overlap_rate > 0 ? c.damping * overlap_rate * overlap_rate : 0.0;
+    const double f = std::max(0.0, c.k * overlap + c.damping * overlap_rate);
+    return (f - c.k * overlap) * overlap_rate;
   }
 };
 
@@ -91,8 +92,9 @@ struct Hertz {
   static double committed_loss(const Coefficients&, double) { return 0.0; }
   static double dashpot_power(const Coefficients& c, double overlap, double overlap_rate) {
     const double root = std::sqrt(std::max(overlap, 0.0));
-    const double damping = c.damping * std::sqrt(root);
-    return c.k * overlap * root + damping * overlap_rate > 0 ? damping * overlap_rate * overlap_rate : 0.0;
+    const double spring = c.k * overlap * root;
+    const double f = std::max(0.0, spring + c.damping * std::sqrt(root) * overlap_rate);
+    return (f - spring) * overlap_rate;  // as for LinearDashpot
   }
 };
 
