@@ -248,6 +248,9 @@ int study_command(const StudyOptions& o) {
   struct Variant {
     std::string family, setting;
     std::function<void(SceneDef&)> apply;
+    // Another force law holds the pile at other overlaps: a pile settled under Walton–Braun
+    // would spring apart at release, so such a variant settles its own pile (same seed).
+    bool own_pile = false;
   };
   std::vector<Variant> variants;
   for (double f : {0.2, 0.1, 0.05, 0.025})
@@ -255,8 +258,8 @@ int study_command(const StudyOptions& o) {
   for (double a : {0.02, 0.005, 0.0025})
     variants.push_back({"design_max_overlap", std::to_string(a).substr(0, 6), [a](SceneDef& s) { s.contact.design_max_overlap = a; }});
   variants.push_back({"integrator", "velocity_verlet", [](SceneDef& s) { s.integration.integrator = IntegratorKind::velocity_verlet; }});
-  variants.push_back({"normal_model", "linear_dashpot (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::linear_dashpot; }});
-  variants.push_back({"normal_model", "hertz (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::hertz; }});
+  variants.push_back({"normal_model", "linear_dashpot (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::linear_dashpot; }, true});
+  variants.push_back({"normal_model", "hertz (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::hertz; }, true});
   // The reference: the finest step and the stiffest contacts together.
   variants.push_back({"reference", "dt 0.025 + overlap 0.0025", [](SceneDef& s) {
                         s.integration.dt_fraction = 0.025;
@@ -275,9 +278,7 @@ int study_command(const StudyOptions& o) {
     v.apply(scene);
     const SceneSetup setup = derive_setup(scene, source);
     World world = build_explicit_world(scene, setup, o.threads);
-    if (v.family == "normal_model") {
-      // Another force law holds the pile at other overlaps: a pile settled under Walton–Braun
-      // would spring apart at release. These variants settle their own pile (same seed).
+    if (v.own_pile) {
       world = prepare(scene, setup, o.threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, true)
                   .world;
     } else {

@@ -28,19 +28,15 @@ CollisionResult collide(double d1, double d2, double e_n, NormalModel model,
   const double gap = 1e-3;
   s.particles = {testing::disc(0.0, 0.0, d1, 0, 1.0, 0.0),
                  testing::disc(0.5 * (d1 + d2) + gap, 0.0, d2, 1, -1.0, 0.0)};
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  StepSettings st = w.settings();
-  st.gravity = {0, 0};
-  w = World(w.particles(), w.segments(), w.table(), st);
+  World w = testing::zero_gravity_world(s);
   CollisionResult out;
-  out.dt = st.dt;
+  out.dt = w.settings().dt;
   bool touched = false;
   for (int n = 0; n < 10'000'000; ++n) {
     w.step();
     const auto& pc = w.pairs();
     const bool force = pc.size() > 0 && pc.fx[0] != 0.0;
-    if (force) { touched = true; out.duration += st.dt; }
+    if (force) { touched = true; out.duration += out.dt; }
     if (touched && !force) break;
   }
   const auto& p = w.particles();

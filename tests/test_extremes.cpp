@@ -19,11 +19,7 @@ double restitution(double e_n, double v, double dt_fraction = 0.02) {
   s.material.restitution = e_n;
   s.integration.dt_fraction = dt_fraction;
   s.particles = {testing::disc(0.0, 0.0, 1.0, 0, v, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -v, 0.0)};
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  StepSettings st = w.settings();
-  st.gravity = {0, 0};
-  w = World(w.particles(), w.segments(), w.table(), st);
+  World w = testing::zero_gravity_world(s);
   bool touched = false;
   for (int n = 0; n < 5'000'000; ++n) {
     w.step();

@@ -20,6 +20,17 @@ inline ParticleDef disc(double x, double y, double diameter, int species = 0, do
   return p;
 }
 
+// The scene's explicit world with gravity switched off (binary collisions, impacts); the
+// stiffness is still derived with g, as SPEC §3 does.
+inline World zero_gravity_world(const SceneDef& scene, bool track_energy = false) {
+  const SceneSetup setup = derive_setup(scene);
+  const World w = build_explicit_world(scene, setup, 1);
+  StepSettings st = w.settings();
+  st.gravity = {0, 0};
+  st.track_energy = track_energy;
+  return World(w.particles(), w.segments(), w.table(), st);
+}
+
 // A small thesis-like pile (30 large-disc areas, D/d = 2) that settles in well under a second.
 inline SceneDef small_pile() {
   SceneDef s;

@@ -29,11 +29,7 @@ Rebound bounce(double vx, double vn, double omega0) {
   s.integration.dt_fraction = 0.005;
   s.walls = {{"floor", {{-50.0, 0.0}, {50.0, 0.0}}, true}};
   s.particles = {testing::disc(0.0, kR + 1e-4, 2 * kR, 0, vx, -vn, omega0)};
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  StepSettings st = w.settings();
-  st.gravity = {0, 0};
-  w = World(w.particles(), w.segments(), w.table(), st);
+  World w = testing::zero_gravity_world(s);
   bool touched = false;
   for (int n = 0; n < 5'000'000; ++n) {
     w.step();

@@ -16,12 +16,7 @@ TEST(Ledger, BinaryCollisionLosesOneMinusEnSquared) {
   SceneDef s = testing::two_species_scene(1.0, 1.0);
   s.integration.dt_fraction = 0.005;
   s.particles = {testing::disc(0.0, 0.0, 1.0, 0, 1.0, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -1.0, 0.0)};
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  StepSettings st = w.settings();
-  st.gravity = {0, 0};
-  st.track_energy = true;
-  w = World(w.particles(), w.segments(), w.table(), st);
+  World w = testing::zero_gravity_world(s, true);
   const double ke0 = w.energy(0).translational;
   for (int n = 0; n < 200000 && w.time() < 0.05; ++n) w.step();
   const EnergyState e = w.energy(0);
@@ -38,12 +33,7 @@ TEST(Ledger, DashpotCollisionBalances) {
   s.contact.normal_model = NormalModel::linear_dashpot;
   s.integration.dt_fraction = 0.002;
   s.particles = {testing::disc(0.0, 0.0, 1.0, 0, 1.0, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -1.0, 0.0)};
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  StepSettings st = w.settings();
-  st.gravity = {0, 0};
-  st.track_energy = true;
-  w = World(w.particles(), w.segments(), w.table(), st);
+  World w = testing::zero_gravity_world(s, true);
   const double ke0 = w.energy(0).translational;
   while (w.time() < 0.05) w.step();
   const EnergyState e = w.energy(0);

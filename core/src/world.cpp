@@ -66,12 +66,6 @@ void World::resize_disc(std::size_t k, double radius, double mass, double inerti
   if (lists_valid_) max_growth_ = std::max(max_growth_, radius - radius_at_rebuild_[k]);
 }
 
-void World::set_velocity(std::size_t k, double vx, double vy, double omega) {
-  particles_.vx[k] = vx;
-  particles_.vy[k] = vy;
-  particles_.omega[k] = omega;
-}
-
 void World::restore_history(const PairContacts& pairs, const WallContacts& walls) {
   pairs_ = pairs;
   wall_contacts_ = walls;

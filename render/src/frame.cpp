@@ -276,7 +276,7 @@ FramePlan FrameMaker::plan(const World& world, double t_star) {
   colour_discs(world);
   FramePlan plan;
   plan.view = view_;
-  plan.discs = discs_;
+  plan.discs = std::move(discs_);  // colour_discs() refills it next frame
   for (const auto& s : world.segments())
     if (s.active) plan.walls.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
   plan.t_star = t_star;

@@ -1,6 +1,5 @@
 #include "runout/render/recorders.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -23,14 +22,12 @@ MovieRecorder::~MovieRecorder() = default;
 
 // On the helper thread: the picture, then the PNG and the video.
 void MovieRecorder::draw(const FramePlan& plan) {
-  const auto t0 = std::chrono::steady_clock::now();
   Image img = maker_.draw(plan);
   if (!png_dir_.empty()) {
     char name[48];
     std::snprintf(name, sizeof name, "/frame_%06ld.png", drawn_);
     write_png(png_dir_ + name, img, keep_alpha_);
   }
-  draw_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (video_) video_->write(std::move(img));
   ++drawn_;
 }

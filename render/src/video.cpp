@@ -161,6 +161,5 @@ void VideoWriter::write(Image frame) {
 
 void VideoWriter::finish() { impl_->worker->finish(); }
 
-long VideoWriter::frames_written() const { return impl_->next_pts; }
 
 }  // namespace runout::render

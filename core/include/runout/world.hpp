@@ -99,7 +99,6 @@ class World {
   void deactivate_wall_segment(std::size_t segment);
   // Changes one disc's size (radius growth during preparation).
   void resize_disc(std::size_t k, double radius, double mass, double inertia);
-  void set_velocity(std::size_t k, double vx, double vy, double omega);
   // Restores contact history read from a checkpoint (lists are rebuilt, keys matched).
   void restore_history(const PairContacts& pairs, const WallContacts& walls);
 

@@ -58,8 +58,6 @@ class FrameMaker {
   Image draw(const FramePlan& plan);
   Image make(const World& world, double t_star) { return draw(plan(world, t_star)); }
   const FrameOptions& options() const { return options_; }
-  // The world window of the last planned frame.
-  const View& last_view() const { return view_; }
 
  private:
   void update_camera(const World& world, double t_star);

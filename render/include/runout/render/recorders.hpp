@@ -26,8 +26,6 @@ class MovieRecorder : public Observer {
   void observe(const World& world, double t_star) override;
   void finish();  // draws what is queued and completes the video file; rethrows worker errors
   long frames() const { return frames_; }
-  // Seconds the helper thread spent drawing and writing PNGs.
-  double draw_seconds() const { return draw_seconds_; }
 
  private:
   void draw(const FramePlan& plan);
@@ -37,7 +35,6 @@ class MovieRecorder : public Observer {
   std::string png_dir_;
   bool keep_alpha_ = false;
   long frames_ = 0, drawn_ = 0;
-  double draw_seconds_ = 0;
   std::unique_ptr<IdleWorker<FramePlan>> worker_;  // last: stops before the members it uses
 };
 
@@ -48,7 +45,6 @@ class SnapshotWriter : public Observer {
   SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
                  std::string dir, std::vector<double> times);
   void observe(const World& world, double t_star) override;
-  const std::vector<double>& times() const { return times_; }
   std::vector<std::string> written() const { return written_; }
 
  private:

@@ -30,7 +30,6 @@ class VideoWriter {
 
   void write(Image frame);  // queued; rethrows an encoder error from the worker
   void finish();            // drains, writes the trailer, renames into place
-  long frames_written() const;
 
  private:
   struct Impl;
