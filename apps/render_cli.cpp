@@ -168,20 +168,25 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
 }
 
 void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path) {
-  const int W = 960, H = 600, left = 90, right = 30, top = 50, bottom = 70;
+  const int W = 1200, H = 640, left = 90, right = 330, top = 60, bottom = 70;
   render::Image img(W, H);
   render::TextRenderer text;
-  const render::Rgba ink{30, 30, 30, 255}, grid{225, 225, 225, 255};
+  const render::Rgba ink{30, 30, 30, 255}, grid{225, 225, 225, 255}, bar{120, 120, 120, 255};
+  const auto noise_of = [](const StudyPoint& p) { return std::isfinite(p.noise) ? p.noise : 0.0; };
   double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
   for (const auto& p : points) {
     x0 = std::min(x0, p.wall_seconds); x1 = std::max(x1, p.wall_seconds);
-    if (p.mu_error > 0) { y0 = std::min(y0, p.mu_error); y1 = std::max(y1, p.mu_error); }
+    for (double y : {p.mu_error, p.mu_error + noise_of(p)})
+      if (y > 0) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
   }
   if (y1 <= 0) { y0 = 1e-4; y1 = 1e-1; }
   const double lx0 = std::floor(std::log10(x0)), lx1 = std::ceil(std::log10(x1) + 1e-9);
   const double ly0 = std::floor(std::log10(y0)), ly1 = std::ceil(std::log10(y1) + 1e-9);
   auto px = [&](double x) { return left + (std::log10(x) - lx0) / std::max(lx1 - lx0, 1.0) * (W - left - right); };
-  auto py = [&](double y) { return H - bottom - (std::log10(y) - ly0) / std::max(ly1 - ly0, 1.0) * (H - top - bottom); };
+  auto py = [&](double y) {
+    if (!(y > 0)) return double(H - bottom - 4);  // zero: drawn on the axis
+    return std::max(double(top), H - bottom - (std::log10(y) - ly0) / std::max(ly1 - ly0, 1.0) * (H - top - bottom));
+  };
   for (double d = lx0; d <= lx1; ++d) {
     const int x = static_cast<int>(px(std::pow(10, d)));
     img.fill_rect(x, top, x + 1, H - bottom, grid);
@@ -196,16 +201,28 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
   }
   img.fill_rect(left, H - bottom, W - right, H - bottom + 2, ink);
   img.fill_rect(left - 2, top, left, H - bottom, ink);
-  text.draw(img, (W - text.width(title, 18)) / 2, 30, title, 18, ink);
-  const std::string xl = "wall time of the run (s)", yl = "|mu - mu_reference| (0 drawn at the bottom)";
-  text.draw(img, (W - text.width(xl, 15)) / 2, H - 20, xl, 15, ink);
-  text.draw(img, left, top - 6, yl, 13, ink);
+  text.draw(img, (W - text.width(title, 18)) / 2, 28, title, 18, ink);
+  const std::string xl = "wall time of a run, mean over the piles (s)";
+  const std::string yl = "|mean mu - mean mu of the reference|; bars: +- 2 standard errors (0 on the axis)";
+  text.draw(img, left + ((W - left - right) - text.width(xl, 15)) / 2, H - 20, xl, 15, ink);
+  text.draw(img, left, top - 10, yl, 13, ink);
+  // Points numbered on the plot, named in a legend on the right: labels never collide.
+  int number = 0;
   for (const auto& p : points) {
-    const double cx = px(p.wall_seconds), cy = p.mu_error > 0 ? py(p.mu_error) : H - bottom - 4;
+    ++number;
+    const double cx = px(p.wall_seconds), cy = py(p.mu_error);
+    const double n = noise_of(p);
+    if (n > 0) {
+      const int ya = static_cast<int>(py(p.mu_error + n)), yb = static_cast<int>(p.mu_error - n > 0 ? py(p.mu_error - n) : H - bottom);
+      img.fill_rect(static_cast<int>(cx), ya, static_cast<int>(cx) + 1, yb, bar);
+      img.fill_rect(static_cast<int>(cx) - 4, ya, static_cast<int>(cx) + 5, ya + 1, bar);
+    }
     for (int y = static_cast<int>(cy) - 6; y <= cy + 6; ++y)
       for (int x = static_cast<int>(cx) - 6; x <= cx + 6; ++x)
         img.blend(x, y, render::palette::kLarge, std::clamp(5.0 - std::hypot(x + 0.5 - cx, y + 0.5 - cy) + 0.5, 0.0, 1.0));
-    text.draw(img, static_cast<int>(cx) + 8, static_cast<int>(cy) - 6, p.label, 12, ink);
+    const std::string tag = std::to_string(number);
+    text.draw(img, static_cast<int>(cx) + 8, static_cast<int>(cy) - 4, tag, 13, ink);
+    text.draw(img, W - right + 16, top + 10 + 20 * number, tag + "  " + p.label, 13, ink);
   }
   render::write_png(path, img);
 }

@@ -70,13 +70,15 @@ std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, Avalanc
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between);
 
-// One run of the accuracy study, for its plot: cost against error.
+// One variant of the accuracy study, for its plot: cost against error.
 struct StudyPoint {
   std::string label;
-  double wall_seconds = 0;
-  double mu_error = 0;  // |mu - mu_reference|
+  double wall_seconds = 0;  // mean over its piles
+  double mu_error = 0;      // |mean mu - mean mu of the reference|
+  double noise = 0;         // two standard errors of that difference (NaN: one pile)
 };
-// Log-log scatter of wall time against |delta mu|, labelled, as a PNG.
+// Log-log scatter of wall time against |delta mu| with the noise as an error bar, labelled,
+// as a PNG.
 void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path);
 
 // Whether this binary was built with the renderer.

@@ -1,15 +1,14 @@
 #include "run_command.hpp"
 
-#include "render_cli.hpp"
-
 #include <omp.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 
+#include "prepare.hpp"
+#include "render_cli.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
@@ -23,82 +22,6 @@ namespace runout::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::vector<io::Override> parse_overrides(const std::vector<std::string>& texts) {
-  std::vector<io::Override> out;
-  for (const auto& t : texts) out.push_back(io::parse_override(t));
-  return out;
-}
-
-SceneDef load_scene(const std::string& path, const std::vector<std::string>& overrides,
-                    const std::string& embedded, const std::string& embedded_name) {
-  const auto o = parse_overrides(overrides);
-  return path.empty() ? io::read_scene(embedded, embedded_name, o) : io::read_scene_file(path, o);
-}
-
-std::string default_cache_dir() {
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/runout";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/runout";
-  return ".runout-cache";
-}
-
-std::string hex(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
-
-// Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
-// one that this binary would not have settled itself.
-constexpr int kPhysicsRevision = 5;
-
-std::uint64_t pile_key(const SceneDef& scene) {
-  return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +
-                     "physics-r" + std::to_string(kPhysicsRevision));
-}
-
-struct PreparedWorld {
-  World world;
-  bool from_cache = false;
-  double seconds = 0;
-};
-
-PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int threads,
-                      const std::string& cache_dir, bool use_cache, bool quiet) {
-  const auto t0 = Clock::now();
-  World world = build_explicit_world(scene, setup, threads);
-  if (!scene.avalanche) return {std::move(world), false, 0.0};
-
-  const std::uint64_t key = pile_key(scene);
-  const std::string path = cache_dir + "/pile-" + hex(key) + ".ckpt";
-  if (use_cache && io::file_exists(path)) {
-    try {
-      decode_checkpoint(io::read_file(path), key, world, path);
-      if (!quiet) std::fprintf(stderr, "runout: settled pile from cache %s\n", path.c_str());
-      release(world, setup);
-      return {std::move(world), true, std::chrono::duration<double>(Clock::now() - t0).count()};
-    } catch (const IoError& e) {
-      std::fprintf(stderr, "runout: warning: ignoring cached pile (%s); settling afresh\n", e.what());
-    }
-  }
-  if (!quiet)
-    std::fprintf(stderr, "runout: settling the pile (%d discs)\n",
-                 [&] { int n = 0; for (int c : setup.counts) n += c; return n; }());
-  auto progress = [quiet](double t_star, double ratio) {
-    if (!quiet) std::fprintf(stderr, "  settling t* = %7.2f  E_k/E_p = %.3e\n", t_star, ratio);
-  };
-  world = build_settled_pile(scene, setup, threads, progress);
-  if (use_cache) {
-    try {
-      io::make_directories(cache_dir);
-      io::write_file_atomically(path, encode_checkpoint(world, key, {}));
-    } catch (const IoError& e) {
-      std::fprintf(stderr, "runout: warning: could not cache the settled pile: %s\n", e.what());
-    }
-  }
-  release(world, setup);
-  return {std::move(world), false, std::chrono::duration<double>(Clock::now() - t0).count()};
-}
 
 // Writes OUT/checkpoint.bin (atomically) at its schedule.
 class CheckpointWriter : public Observer {
@@ -230,109 +153,6 @@ int run_command(const RunOptions& o) {
                  scene.rest.max_time);
     return 3;
   }
-  return 0;
-}
-
-int study_command(const StudyOptions& o) {
-  const std::string source = o.scene_path.empty() ? "<embedded quick scene>" : o.scene_path;
-  const SceneDef base = load_scene(o.scene_path, o.overrides, io::embedded_quick_scene(), source);
-  const SceneSetup base_setup = derive_setup(base, source);
-  check_runnable(base, base_setup, source);
-  io::make_directories(o.out_dir);
-  // Every variant starts from the same settled pile (settled with the scene's own knobs), so
-  // the differences are the knobs', not another random pile's.
-  PreparedWorld pile = prepare(base, base_setup, o.threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
-                               true, false);
-  const std::string start = encode_checkpoint(pile.world, 0, {});
-
-  struct Variant {
-    std::string family, setting;
-    std::function<void(SceneDef&)> apply;
-    // Another force law holds the pile at other overlaps: a pile settled under Walton–Braun
-    // would spring apart at release, so such a variant settles its own pile (same seed).
-    bool own_pile = false;
-  };
-  std::vector<Variant> variants;
-  for (double f : {0.2, 0.1, 0.05, 0.025})
-    variants.push_back({"dt_fraction", std::to_string(f).substr(0, 5), [f](SceneDef& s) { s.integration.dt_fraction = f; }});
-  for (double a : {0.02, 0.005, 0.0025})
-    variants.push_back({"design_max_overlap", std::to_string(a).substr(0, 6), [a](SceneDef& s) { s.contact.design_max_overlap = a; }});
-  variants.push_back({"integrator", "velocity_verlet", [](SceneDef& s) { s.integration.integrator = IntegratorKind::velocity_verlet; }});
-  variants.push_back({"normal_model", "linear_dashpot (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::linear_dashpot; }, true});
-  variants.push_back({"normal_model", "hertz (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::hertz; }, true});
-  // The reference: the finest step and the stiffest contacts together.
-  variants.push_back({"reference", "dt 0.025 + overlap 0.0025", [](SceneDef& s) {
-                        s.integration.dt_fraction = 0.025;
-                        s.contact.design_max_overlap = 0.0025;
-                      }});
-
-  struct Row {
-    Variant v;
-    RunResult r;
-    double seconds = 0;
-    std::string failure;  // a run that stopped with an error is a result too
-  };
-  std::vector<Row> rows;
-  for (const auto& v : variants) {
-    SceneDef scene = base;
-    v.apply(scene);
-    const SceneSetup setup = derive_setup(scene, source);
-    World world = build_explicit_world(scene, setup, o.threads);
-    if (v.own_pile) {
-      world = prepare(scene, setup, o.threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, true)
-                  .world;
-    } else {
-      decode_checkpoint(start, 0, world, "settled pile");
-    }
-    std::fprintf(stderr, "runout study: %s = %s ...\n", v.family.c_str(), v.setting.c_str());
-    AvalancheRun run(world, scene, setup);
-    const auto t0 = Clock::now();
-    try {
-      RunResult r = run.run();
-      rows.push_back({v, std::move(r), std::chrono::duration<double>(Clock::now() - t0).count(), {}});
-    } catch (const NumericalError& e) {
-      std::fprintf(stderr, "runout study: %s = %s failed: %s\n", v.family.c_str(), v.setting.c_str(), e.what());
-      rows.push_back({v, RunResult{}, std::chrono::duration<double>(Clock::now() - t0).count(), e.what()});
-    }
-  }
-  if (!rows.back().failure.empty()) throw NumericalError("the reference run failed: " + rows.back().failure);
-  const RunResult& ref = rows.back().r;
-  std::string csv = "family,setting,dt,steps,wall_seconds,particle_steps_per_second,mu_global,mu_error,"
-                    "L_cm,L_cm_rel_error,front,front_rel_error,max_overlap,worst_energy_residual,at_rest,t_star_end\n";
-  std::string md = "| knob | setting | wall s | M particle-steps/s | mu | abs. error | L_cm rel. error | front rel. error | max overlap / r | worst residual / Ep0 |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<StudyPoint> points;
-  char line[1024];
-  for (const auto& row : rows) {
-    if (!row.failure.empty()) {
-      std::string why = row.failure.substr(0, row.failure.find(':'));
-      csv += row.v.family + "," + row.v.setting + ",,,,,,,,,,,,,failed,\n";
-      md += "| " + row.v.family + " | " + row.v.setting + " | failed: " + why + " | | | | | | | |\n";
-      continue;
-    }
-    const auto& r = row.r;
-    const double front = r.final_energy.front_x, ref_front = ref.final_energy.front_x;
-    std::snprintf(line, sizeof line, "%s,%s,%.6g,%lld,%.3f,%.4g,%.6f,%.6f,%.6g,%.5f,%.6g,%.5f,%.4f,%.4f,%s,%.2f\n",
-                  row.v.family.c_str(), row.v.setting.c_str(), r.dt, static_cast<long long>(r.steps), row.seconds,
-                  r.particle_steps_per_second, r.mu_global, std::abs(r.mu_global - ref.mu_global), r.L_cm,
-                  std::abs(r.L_cm - ref.L_cm) / ref.L_cm, front, std::abs(front - ref_front) / ref_front,
-                  r.max_overlap, r.worst_energy_residual, r.at_rest ? "true" : "false", r.t_star_end);
-    csv += line;
-    std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f |\n",
-                  row.v.family.c_str(), row.v.setting.c_str(), row.seconds, r.particle_steps_per_second / 1e6,
-                  r.mu_global, std::abs(r.mu_global - ref.mu_global), std::abs(r.L_cm - ref.L_cm) / ref.L_cm,
-                  std::abs(front - ref_front) / ref_front, r.max_overlap, r.worst_energy_residual);
-    md += line;
-    points.push_back({row.v.family + " " + row.v.setting, row.seconds, std::abs(r.mu_global - ref.mu_global)});
-  }
-  io::write_file_atomically(o.out_dir + "/study.csv", csv);
-  io::write_file_atomically(o.out_dir + "/study.md", md);
-  try {
-    plot_study(points, "speed against accuracy: " + base.name, o.out_dir + "/study.png");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "runout study: no plot (%s)\n", e.what());
-  }
-  std::printf("%s", md.c_str());
   return 0;
 }
 

@@ -37,14 +37,16 @@ struct BenchOptions {
 struct StudyOptions {
   std::string scene_path;  // empty: the embedded quick pile
   std::string out_dir;
+  int seeds = 3;           // piles preparation.seed, +1, ... : every variant runs on each
+  bool resume = false;     // keep the runs already in OUT/runs.csv
   int threads = 1;
   std::string cache_dir;
   std::vector<std::string> overrides;
 };
 
 int run_command(const RunOptions& o);    // returns the process exit code
-// `runout study accuracy`: one scene over a grid of the speed/accuracy knobs, every run from
-// the same settled pile; writes study.csv, study.md and study.png into the output folder.
+// `runout study accuracy` (study_command.cpp): one scene over a grid of the speed/accuracy
+// knobs on several piles; writes runs.csv, study.csv, study.md and study.png into the output folder.
 int study_command(const StudyOptions& o);
 int bench_command(const BenchOptions& o);
 

@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
   study_cmd->require_subcommand(1);
   accuracy_cmd->add_option("scene", study.scene_path, "scene (default: the embedded quick pile)")->check(CLI::ExistingFile);
   accuracy_cmd->add_option("--out,-o", study.out_dir, "output folder")->required();
+  accuracy_cmd->add_option("--seeds", study.seeds, "piles (preparation.seed, +1, ...) each variant runs on")
+      ->check(CLI::Range(1, 1000));
+  accuracy_cmd->add_flag("--resume", study.resume, "keep the runs already in OUT/runs.csv");
   accuracy_cmd->add_option("--threads", study.threads, "OpenMP threads")->check(CLI::Range(1, 256));
   accuracy_cmd->add_option("--set", study.overrides, "override a scene key")->take_all();
   accuracy_cmd->add_option("--cache-dir", study.cache_dir, "settled-pile cache (default ~/.cache/runout)");

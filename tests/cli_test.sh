@@ -75,9 +75,14 @@ b=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/res/summary.json")
 [ "$a" = "$b" ] || { echo "FAIL resume: summaries differ"; echo "$a"; echo "$b"; fail=$((fail + 1)); }
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
-check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --set output.end_time=1.0
+check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
+[ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || { echo "FAIL study: runs.csv should have 11 x 2 rows"; fail=$((fail + 1)); }
 [ -s "$work/study/study.png" ] || { echo "FAIL study: no plot"; fail=$((fail + 1)); }
+# Resuming a finished study reruns nothing: the same rows, the same table.
+cp "$work/study/runs.csv" "$work/runs.before"
+check study-resume 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --resume --set output.end_time=1.0
+cmp -s "$work/runs.before" "$work/study/runs.csv" || { echo "FAIL study-resume: runs.csv changed"; fail=$((fail + 1)); }
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

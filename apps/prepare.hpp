@@ -1,0 +1,36 @@
+// What every command does before it steps: read the scene (file or embedded, with --set
+// overrides) and get a released pile, settled afresh or read from the pile cache.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runout/scene.hpp"
+#include "runout/setup.hpp"
+#include "runout/world.hpp"
+
+namespace runout::app {
+
+// Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
+// one that this binary would not have settled itself.
+inline constexpr int kPhysicsRevision = 5;
+
+// `path` empty: the embedded scene text, reported as `embedded_name` in errors.
+SceneDef load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                    const std::string& embedded, const std::string& embedded_name);
+
+// $XDG_CACHE_HOME/runout, else ~/.cache/runout, else ./.runout-cache.
+std::string default_cache_dir();
+
+struct PreparedWorld {
+  World world;
+  bool from_cache = false;
+  double seconds = 0;  // settling or cache read
+};
+
+// An avalanche scene: the settled pile (from the cache when `use_cache` and present), released.
+// An explicit scene: its discs and walls as given.
+PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int threads,
+                      const std::string& cache_dir, bool use_cache, bool quiet);
+
+}  // namespace runout::app
