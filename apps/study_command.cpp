@@ -111,7 +111,7 @@ std::vector<StudyRun> read_runs(const std::string& path) {
 // A variant over its piles: means, the seed-to-seed spread of mu, the worst overlap.
 struct Summary {
   int runs = 0, failed = 0;
-  double wall = 0, seconds_per_t_star = 0, rate = 0, mu = 0, mu_sd = 0, L_cm = 0, front = 0, residual = 0;
+  double wall = 0, steps = 0, seconds_per_t_star = 0, rate = 0, mu = 0, mu_sd = 0, L_cm = 0, front = 0, residual = 0;
   double max_overlap = 0;
   std::string failure;
   double standard_error() const { return runs > 1 ? mu_sd / std::sqrt(runs) : NAN; }
@@ -122,13 +122,13 @@ Summary summarise(const std::vector<const StudyRun*>& runs) {
   for (const StudyRun* r : runs) {
     if (!r->ok) { ++s.failed; s.failure = r->failure.substr(0, r->failure.find(':')); continue; }
     ++s.runs;
-    s.wall += r->wall_seconds; s.seconds_per_t_star += r->wall_seconds / std::max(r->t_star_end, 1e-9);
+    s.wall += r->wall_seconds; s.steps += static_cast<double>(r->steps); s.seconds_per_t_star += r->wall_seconds / std::max(r->t_star_end, 1e-9);
     s.rate += r->particle_steps_per_second; s.mu += r->mu; s.L_cm += r->L_cm; s.front += r->front;
     s.residual += r->residual; s.max_overlap = std::max(s.max_overlap, r->max_overlap);
   }
   if (s.runs == 0) return s;
   const double n = s.runs;
-  s.wall /= n; s.seconds_per_t_star /= n; s.rate /= n; s.mu /= n; s.L_cm /= n; s.front /= n; s.residual /= n;
+  s.wall /= n; s.steps /= n; s.seconds_per_t_star /= n; s.rate /= n; s.mu /= n; s.L_cm /= n; s.front /= n; s.residual /= n;
   double ss = 0;
   for (const StudyRun* r : runs)
     if (r->ok) ss += (r->mu - s.mu) * (r->mu - s.mu);
@@ -223,20 +223,20 @@ int study_command(const StudyOptions& o) {
   const Summary& ref = summaries.back();
   if (ref.runs == 0) throw NumericalError("every reference run failed: " + ref.failure);
 
-  std::string csv = "family,setting,runs,failed,wall_seconds,seconds_per_t_star,particle_steps_per_second,mu_mean,mu_sd,"
+  std::string csv = "family,setting,runs,failed,steps,wall_seconds,seconds_per_t_star,particle_steps_per_second,mu_mean,mu_sd,"
                     "mu_error,mu_noise_2se,L_cm_rel_error,front_rel_error,max_overlap,mean_worst_energy_residual\n";
   std::string md =
-      "| knob | setting | runs | wall s | s per t* | M particle-steps/s | mu mean ± sd | abs. error of mean | 2 s.e. | "
+      "| knob | setting | runs | steps | wall s | s per t* | M particle-steps/s | mu mean ± sd | abs. error of mean | 2 s.e. | "
       "L_cm rel. error | front rel. error | max overlap / r | residual / Ep0 |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<StudyPoint> points;
   char line[1024];
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const Variant& v = variants[k];
     const Summary& s = summaries[k];
     if (s.runs == 0) {
-      csv += v.family + "," + v.setting + ",0," + std::to_string(s.failed) + ",,,,,,,,,,,\n";
-      md += "| " + v.family + " | " + v.setting + " | failed: " + s.failure + " | | | | | | | | | | |\n";
+      csv += v.family + "," + v.setting + ",0," + std::to_string(s.failed) + ",,,,,,,,,,,,\n";
+      md += "| " + v.family + " | " + v.setting + " | failed: " + s.failure + " | | | | | | | | | | | |\n";
       continue;
     }
     const double error = std::abs(s.mu - ref.mu);
@@ -246,14 +246,14 @@ int study_command(const StudyOptions& o) {
                                     : 2 * std::sqrt(std::pow(s.standard_error(), 2) + std::pow(ref.standard_error(), 2));
     const double L_error = std::abs(s.L_cm - ref.L_cm) / ref.L_cm;
     const double front_error = std::abs(s.front - ref.front) / ref.front;
-    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.3f,%.5f,%.4g,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.4f,%.4f\n",
-                  v.family.c_str(), v.setting.c_str(), s.runs, s.failed, s.wall, s.seconds_per_t_star, s.rate,
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.0f,%.3f,%.5f,%.4g,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.4f,%.4f\n",
+                  v.family.c_str(), v.setting.c_str(), s.runs, s.failed, s.steps, s.wall, s.seconds_per_t_star, s.rate,
                   s.mu, s.mu_sd, error, noise, L_error, front_error, s.max_overlap, s.residual);
     csv += line;
     std::snprintf(line, sizeof line,
-                  "| %s | %s | %d%s | %.1f | %.3f | %.1f | %.4f ± %.4f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f |\n",
+                  "| %s | %s | %d%s | %.3g | %.1f | %.3f | %.1f | %.4f ± %.4f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f |\n",
                   v.family.c_str(), v.setting.c_str(), s.runs, s.failed ? (" (+" + std::to_string(s.failed) + " failed)").c_str() : "",
-                  s.wall, s.seconds_per_t_star, s.rate / 1e6, s.mu, s.mu_sd, error, noise, L_error, front_error,
+                  s.steps, s.wall, s.seconds_per_t_star, s.rate / 1e6, s.mu, s.mu_sd, error, noise, L_error, front_error,
                   s.max_overlap, s.residual);
     md += line;
     points.push_back({v.family == "reference" ? "reference" : v.family + " " + v.setting, s.wall, error, noise});

@@ -92,6 +92,32 @@ TEST(Extremes, FrictionZeroSlidesAndFrictionTenRolls) {
   EXPECT_NEAR(slope_acceleration(10.0), 5.0 / 7.0 * 9.81 * 0.5, 0.005 * 9.81);  // 5/7 g sin
 }
 
+// mu = 0 everywhere: no tangential spring is kept (the lists hold none), nothing can exert a
+// torque, so no disc ever spins, and the ledger books no sliding loss.
+TEST(Extremes, FrictionlessPileKeepsNoTangentialHistory) {
+  SceneDef s = testing::small_pile();
+  s.material.friction = s.material.wall_friction = 0.0;
+  s.output.end_time = 3.0;
+  const SceneSetup setup = derive_setup(s);
+  World w = build_settled_pile(s, setup, 1);
+  release(w, setup);
+  EXPECT_FALSE(w.frictional());
+  AvalancheRun run(w, s, setup);
+  const RunResult r = run.run();
+  EXPECT_GT(w.pairs().size(), 0u);
+  EXPECT_GT(w.wall_contacts().size(), 0u);
+  EXPECT_TRUE(w.pairs().tangential_spring.empty());
+  EXPECT_TRUE(w.wall_contacts().tangential_spring.empty());
+  for (std::size_t k = 0; k < w.particles().size(); ++k) ASSERT_EQ(w.particles().omega[k], 0.0) << "disc " << k;
+  EXPECT_EQ(w.dissipation().friction, 0.0);
+  EXPECT_GT(r.com_rest.x(), r.com_release.x());  // it flowed
+  // The same pile with friction keeps one spring per listed contact.
+  SceneDef rough = testing::small_pile();
+  World wr = build_settled_pile(rough, derive_setup(rough), 1);
+  EXPECT_TRUE(wr.frictional());
+  EXPECT_EQ(wr.pairs().tangential_spring.size(), wr.pairs().size());
+}
+
 TEST(Extremes, SizeRatioTwentyPileSettlesAndFlows) {
   SceneDef s;
   s.species = {{"large", 1.0, 0.1, 0.5}, {"small", 0.05, 0.1, 0.5}};

@@ -35,7 +35,7 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
         NeighborSearch search;
         PairContacts pairs;
         WallContacts wall_pairs;
-        search.rebuild(p, walls, skin, threads, pairs, wall_pairs);
+        search.rebuild(p, walls, skin, threads, true, pairs, wall_pairs);
         std::set<std::pair<int, int>> found, expected;
         for (std::size_t q = 0; q < pairs.size(); ++q) found.insert({pairs.i[q], pairs.j[q]});
         for (std::size_t a = 0; a < p.size(); ++a)

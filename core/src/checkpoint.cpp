@@ -125,9 +125,10 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
   if (pairs.row_start.size() != n + 1 || walls.row_start.size() != n + 1 ||
       pairs.j.size() != pairs.overlap_max.size() ||
-      pairs.j.size() != pairs.tangential_spring.size() ||
+      // Springs are absent when the world that wrote it had no friction (World::frictional).
+      (!pairs.tangential_spring.empty() && pairs.j.size() != pairs.tangential_spring.size()) ||
       walls.segment.size() != walls.overlap_max.size() ||
-      walls.segment.size() != walls.tangential_spring.size() ||
+      (!walls.tangential_spring.empty() && walls.segment.size() != walls.tangential_spring.size()) ||
       static_cast<std::size_t>(pairs.row_start[n]) != pairs.j.size() ||
       static_cast<std::size_t>(walls.row_start[n]) != walls.segment.size())
     throw IoError(name + ": checkpoint is corrupt (contact lists)");

@@ -26,6 +26,8 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
                    const Key& second, std::vector<double>& overlap_max,
                    std::vector<double>& spring, std::int32_t rows, int threads) {
   const bool had_old = old_row.size() == row.size();
+  // Springs are carried when both lists keep them (a checkpoint written without friction has none).
+  const bool springs = !spring.empty() && old_spring.size() == old_second.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int32_t k = 0; k < rows; ++k) {
     std::int32_t a = had_old ? old_row[k] : 0;
@@ -34,7 +36,7 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
       while (a < a_end && old_second[a] < second[p]) ++a;
       const bool found = a < a_end && old_second[a] == second[p];
       overlap_max[p] = found ? old_overlap_max[a] : 0.0;
-      spring[p] = found ? old_spring[a] : 0.0;
+      if (springs) spring[p] = found ? old_spring[a] : 0.0;
     }
   }
 }
@@ -42,8 +44,8 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
 }  // namespace
 
 void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& segments,
-                             double skin, int threads, PairContacts& pairs,
-                             WallContacts& walls) {
+                             double skin, int threads, bool tangential_history,
+                             PairContacts& pairs, WallContacts& walls) {
   const auto n = static_cast<std::int32_t>(p.size());
   threads = std::max(1, threads);
 
@@ -166,13 +168,15 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 
   // ---- history and per-step buffers ----
   const size_t np = pairs.i.size();
-  pairs.overlap_max.resize(np); pairs.tangential_spring.resize(np);
+  pairs.overlap_max.resize(np);
+  pairs.tangential_spring.assign(tangential_history ? np : 0, 0.0);
   pairs.fx.assign(np, 0); pairs.fy.assign(np, 0); pairs.ft.assign(np, 0);
   carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.overlap_max,
                 old_pairs_.tangential_spring, pairs.row_start, pairs.j, pairs.overlap_max,
                 pairs.tangential_spring, n, threads);
   const size_t nw = walls.disc.size();
-  walls.overlap_max.resize(nw); walls.tangential_spring.resize(nw);
+  walls.overlap_max.resize(nw);
+  walls.tangential_spring.assign(tangential_history ? nw : 0, 0.0);
   walls.fx.assign(nw, 0); walls.fy.assign(nw, 0); walls.ft.assign(nw, 0);
   carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.overlap_max,
                 old_walls_.tangential_spring, walls.row_start, walls.segment, walls.overlap_max,

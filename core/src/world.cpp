@@ -42,7 +42,7 @@ template <> Hertz::Coefficients normal_coefficients<Hertz>(const PairCoefficient
 World::World(Particles particles, std::vector<Segment> segments, ContactTable table,
              StepSettings settings)
     : particles_(std::move(particles)), segments_(std::move(segments)),
-      table_(std::move(table)), settings_(settings) {
+      table_(std::move(table)), settings_(settings), frictional_(table_.frictional()) {
   settings_.threads = std::clamp(settings_.threads, 1, kMaxThreads);
 }
 
@@ -106,30 +106,34 @@ void World::reorder_discs() {
   // History keyed by the new numbering, rows sorted, ready for the search to carry over.
   PairContacts old;
   std::vector<std::tuple<std::int32_t, std::int32_t, double, double>> pairs;
+  auto spring_of = [](const auto& contacts, std::size_t q) {
+    return contacts.tangential_spring.empty() ? 0.0 : contacts.tangential_spring[q];
+  };
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (pairs_.overlap_max[q] == 0.0 && pairs_.tangential_spring[q] == 0.0) continue;
+    if (pairs_.overlap_max[q] == 0.0 && spring_of(pairs_, q) == 0.0) continue;
     std::int32_t a = new_index[pairs_.i[q]], b = new_index[pairs_.j[q]];
     if (a > b) std::swap(a, b);
-    pairs.emplace_back(a, b, pairs_.overlap_max[q], pairs_.tangential_spring[q]);
+    pairs.emplace_back(a, b, pairs_.overlap_max[q], spring_of(pairs_, q));
   }
   std::sort(pairs.begin(), pairs.end());
   old.row_start.assign(n + 1, 0);
   for (const auto& [a, b, om, sp] : pairs) {
     ++old.row_start[a + 1];
-    old.j.push_back(b); old.overlap_max.push_back(om); old.tangential_spring.push_back(sp);
+    old.j.push_back(b); old.overlap_max.push_back(om);
+    if (frictional_) old.tangential_spring.push_back(sp);
   }
   for (std::size_t k = 0; k < n; ++k) old.row_start[k + 1] += old.row_start[k];
   WallContacts old_walls;
   std::vector<std::tuple<std::int32_t, std::int32_t, double, double>> walls;
   for (std::size_t q = 0; q < wall_contacts_.size(); ++q)
     walls.emplace_back(new_index[wall_contacts_.disc[q]], wall_contacts_.segment[q],
-                       wall_contacts_.overlap_max[q], wall_contacts_.tangential_spring[q]);
+                       wall_contacts_.overlap_max[q], spring_of(wall_contacts_, q));
   std::sort(walls.begin(), walls.end());
   old_walls.row_start.assign(n + 1, 0);
   for (const auto& [a, seg, om, sp] : walls) {
     ++old_walls.row_start[a + 1];
     old_walls.segment.push_back(seg); old_walls.overlap_max.push_back(om);
-    old_walls.tangential_spring.push_back(sp);
+    if (frictional_) old_walls.tangential_spring.push_back(sp);
   }
   for (std::size_t k = 0; k < n; ++k) old_walls.row_start[k + 1] += old_walls.row_start[k];
   restore_history(old, old_walls);
@@ -137,7 +141,7 @@ void World::reorder_discs() {
 
 void World::rebuild_lists() {
   const auto t0 = Clock::now();
-  search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, pairs_,
+  search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, frictional_, pairs_,
                   wall_contacts_);
   x_at_rebuild_ = particles_.x;
   y_at_rebuild_ = particles_.y;
@@ -155,7 +159,9 @@ void World::rebuild_lists() {
 // coefficient arrays keep every load a plain (gathered) double.
 namespace {
 
-template <class Law, bool kLedger>
+// kFriction false (mu = 0 everywhere): no slip, no tangential spring read or written, and the
+// per-pair tangential force stays the zero the list rebuild wrote.
+template <class Law, bool kLedger, bool kFriction>
 struct PairKernel {
   const double* x; const double* y; const double* vx; const double* vy; const double* om;
   const double* r; const std::int32_t* species; const std::int32_t* pi; const std::int32_t* pj;
@@ -194,28 +200,31 @@ struct PairKernel {
       const double overlap = rsum - dist;  // eq. 2.1
       const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
       const double overlap_rate = -(dvx * nx + dvy * ny);
-      const double slip = -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
       const std::int32_t kind = species[i] * species_count + species[j];
       double history_overlap = overlap_max[q];
-      double history_spring = spring[q];
       const double previous_max = history_overlap;
-      const double trial = history_spring + slip * dt;
       const double fn = Law::force(normal[kind], overlap, overlap_rate, history_overlap);
-      const double f_t = tangential_force(tangential[kind], fn, slip * dt, history_spring);
+      double f_t = 0;
+      if constexpr (kFriction) {
+        const double slip = -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
+        double history_spring = spring[q];
+        const double trial = history_spring + slip * dt;
+        f_t = tangential_force(tangential[kind], fn, slip * dt, history_spring);
+        spring[q] = touching ? history_spring : 0.0;
+        // Sliding loses |F_t| times the slip the spring did not take.
+        if constexpr (kLedger) loss_friction += touching ? std::abs(f_t * (trial - history_spring)) : 0.0;
+      }
       if constexpr (kLedger) {
-        // Sliding loses |F_t| times the slip the spring did not take; a contact that ends
-        // banks its committed hysteresis; a dashpot loses its power over the step.
-        loss_friction += touching ? std::abs(f_t * (trial - history_spring)) : 0.0;
+        // A contact that ends banks its committed hysteresis; a dashpot loses its power over the step.
         loss_normal += touching ? Law::dashpot_power(normal[kind], overlap, overlap_rate) * dt
                                 : Law::committed_loss(normal[kind], previous_max);
       }
       overlap_max[q] = touching ? history_overlap : 0.0;
-      spring[q] = touching ? history_spring : 0.0;
       const double fn_on = touching ? fn : 0.0, ft_on = touching ? f_t : 0.0;
       // Force on i: normal pushes i away from j, tangential acts along s = (-ny, nx).
       fx[q] = -fn_on * nx - ft_on * ny;
       fy[q] = -fn_on * ny + ft_on * nx;
-      ft[q] = ft_on;
+      if constexpr (kFriction) ft[q] = ft_on;
       // The guard watches impacts (loading faster than impact_rate), not the permanent set of
       // a static hysteretic contact.
       worst = std::max(worst, touching && overlap_rate > impact_rate ? overlap / std::min(r[i], r[j]) : 0.0);
@@ -226,7 +235,7 @@ struct PairKernel {
 
 }  // namespace
 
-template <class Law, bool kLedger>
+template <class Law, bool kLedger, bool kFriction>
 PassSums World::pair_forces() {
   const auto& p = particles_;
   auto& c = pairs_;
@@ -237,7 +246,7 @@ PassSums World::pair_forces() {
     normal[k] = normal_coefficients<Law>(table_.pair[k]);
     tangential[k] = table_.pair[k].tangential;
   }
-  const PairKernel<Law, kLedger> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
+  const PairKernel<Law, kLedger, kFriction> kernel{p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(),
                                p.radius.data(), p.species.data(), c.i.data(), c.j.data(),
                                normal.data(), tangential.data(), ns, settings_.dt, settings_.impact_rate,
                                c.overlap_max.data(), c.tangential_spring.data(), c.fx.data(),
@@ -261,7 +270,7 @@ PassSums World::pair_forces() {
 }
 
 // Disc–wall contacts: few, so a plain loop. The wall plays j with zero velocity (SPEC §2).
-template <class Law, bool kLedger>
+template <class Law, bool kLedger, bool kFriction>
 PassSums World::wall_forces() {
   const auto& p = particles_;
   auto& c = wall_contacts_;
@@ -282,51 +291,60 @@ PassSums World::wall_forces() {
     const Eigen::Vector2d normal = dist > 0 ? Eigen::Vector2d(d / dist) : Eigen::Vector2d(0, 0);
     const double overlap = p.radius[i] - dist;
     const double overlap_rate = p.vx[i] * normal.x() + p.vy[i] * normal.y();
-    const double slip = p.vx[i] * normal.y() - p.vy[i] * normal.x() - p.omega[i] * p.radius[i];
     const PairCoefficients& k = table_.wall[p.species[i]];
     double history_overlap = c.overlap_max[q];
-    double history_spring = c.tangential_spring[q];
     const double previous_max = history_overlap;
-    const double trial = history_spring + slip * dt;
     const auto coefficients = normal_coefficients<Law>(k);
     const double fn = Law::force(coefficients, overlap, overlap_rate, history_overlap);
-    const double ft = tangential_force(k.tangential, fn, slip * dt, history_spring);
+    double ft = 0;
+    if constexpr (kFriction) {
+      const double slip = p.vx[i] * normal.y() - p.vy[i] * normal.x() - p.omega[i] * p.radius[i];
+      double history_spring = c.tangential_spring[q];
+      const double trial = history_spring + slip * dt;
+      ft = tangential_force(k.tangential, fn, slip * dt, history_spring);
+      c.tangential_spring[q] = touching ? history_spring : 0.0;
+      if constexpr (kLedger) loss_friction += touching ? std::abs(ft * (trial - history_spring)) : 0.0;
+    }
     if constexpr (kLedger) {
-      loss_friction += touching ? std::abs(ft * (trial - history_spring)) : 0.0;
       loss_normal += touching ? Law::dashpot_power(coefficients, overlap, overlap_rate) * dt
                               : Law::committed_loss(coefficients, previous_max);
     }
     c.overlap_max[q] = touching ? history_overlap : 0.0;
-    c.tangential_spring[q] = touching ? history_spring : 0.0;
     const double fn_on = touching ? fn : 0.0, ft_on = touching ? ft : 0.0;
     c.fx[q] = -fn_on * normal.x() - ft_on * normal.y();
     c.fy[q] = -fn_on * normal.y() + ft_on * normal.x();
-    c.ft[q] = ft_on;
+    if constexpr (kFriction) c.ft[q] = ft_on;
     worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / p.radius[i] : 0.0);
   }
   return {worst, loss_normal, loss_friction};
 }
 
-template <class Law>
+template <class Law, bool kFriction>
 void World::compute_forces_with() {
   auto t0 = Clock::now();
   const bool ledger = settings_.track_energy;
-  const PassSums pairs = ledger ? pair_forces<Law, true>() : pair_forces<Law, false>();
+  const PassSums pairs = ledger ? pair_forces<Law, true, kFriction>() : pair_forces<Law, false, kFriction>();
   profile_.pair_forces += seconds_since(t0);
   t0 = Clock::now();
-  const PassSums walls = ledger ? wall_forces<Law, true>() : wall_forces<Law, false>();
+  const PassSums walls = ledger ? wall_forces<Law, true, kFriction>() : wall_forces<Law, false, kFriction>();
   profile_.wall_forces += seconds_since(t0);
   ledger_.normal += pairs.loss_normal + walls.loss_normal;
   ledger_.friction += pairs.loss_friction + walls.loss_friction;
   check_overlap(std::max(pairs.worst, walls.worst));
 }
 
-void World::compute_forces() {
+template <bool kFriction>
+void World::compute_forces_for() {
   switch (settings_.normal_model) {
-    case NormalModel::walton_braun: compute_forces_with<WaltonBraun>(); break;
-    case NormalModel::linear_dashpot: compute_forces_with<LinearDashpot>(); break;
-    case NormalModel::hertz: compute_forces_with<Hertz>(); break;
+    case NormalModel::walton_braun: compute_forces_with<WaltonBraun, kFriction>(); break;
+    case NormalModel::linear_dashpot: compute_forces_with<LinearDashpot, kFriction>(); break;
+    case NormalModel::hertz: compute_forces_with<Hertz, kFriction>(); break;
   }
+}
+
+void World::compute_forces() {
+  if (frictional_) compute_forces_for<true>();
+  else compute_forces_for<false>();
 }
 
 // SPEC §8: an overlap beyond the guard means the contact is far stiffer-demanding than the
@@ -543,7 +561,8 @@ EnergyState World::energy(double reference_y) const {
     const std::int32_t i = pairs_.i[q], j = pairs_.j[q];
     const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
     if (overlap > 0)
-      add(table_.between(p.species[i], p.species[j]), overlap, pairs_.overlap_max[q], pairs_.tangential_spring[q]);
+      add(table_.between(p.species[i], p.species[j]), overlap, pairs_.overlap_max[q],
+          frictional_ ? pairs_.tangential_spring[q] : 0.0);
   }
   for (std::size_t q = 0; q < wall_contacts_.size(); ++q) {
     const std::int32_t i = wall_contacts_.disc[q];
@@ -551,7 +570,8 @@ EnergyState World::energy(double reference_y) const {
     const SegmentProjection proj = project(s, {p.x[i], p.y[i]});
     const double overlap = p.radius[i] - (proj.point - Eigen::Vector2d(p.x[i], p.y[i])).norm();
     if (s.active && !proj.at_free_end && overlap > 0)
-      add(table_.wall[p.species[i]], overlap, wall_contacts_.overlap_max[q], wall_contacts_.tangential_spring[q]);
+      add(table_.wall[p.species[i]], overlap, wall_contacts_.overlap_max[q],
+          frictional_ ? wall_contacts_.tangential_spring[q] : 0.0);
   }
   return e;
 }

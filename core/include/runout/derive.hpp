@@ -31,6 +31,13 @@ struct ContactTable {
   std::vector<PairCoefficients> pair;  // species_count^2, symmetric
   std::vector<PairCoefficients> wall;  // species_count
   const PairCoefficients& between(int a, int b) const { return pair[a * species_count + b]; }
+  // Whether any contact has a Coulomb slider: with mu = 0 everywhere the tangential force is
+  // zero, so no tangential spring is kept or computed (SPEC §2 with mu = 0).
+  bool frictional() const {
+    for (const auto& c : pair) if (c.tangential.friction > 0) return true;
+    for (const auto& c : wall) if (c.tangential.friction > 0) return true;
+    return false;
+  }
 };
 
 // f = exp(-atan(beta)/beta), beta = pi / ln(e_n): peak overlap of a damped linear oscillator in

@@ -15,7 +15,8 @@ namespace runout {
 // Disc–disc candidate pairs, i < j, sorted by (i, j).
 struct PairContacts {
   std::vector<std::int32_t> i, j;
-  std::vector<double> overlap_max, tangential_spring;  // history (SPEC §2)
+  // History (SPEC §2). tangential_spring is empty when no contact has friction.
+  std::vector<double> overlap_max, tangential_spring;
   std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)
   std::vector<double> ft;      // this step's tangential force on i along s; torque = r * ft
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
@@ -30,7 +31,7 @@ struct PairContacts {
 // Disc–wall-segment candidate pairs, sorted by (disc, segment).
 struct WallContacts {
   std::vector<std::int32_t> disc, segment;
-  std::vector<double> overlap_max, tangential_spring;
+  std::vector<double> overlap_max, tangential_spring;  // as PairContacts
   std::vector<double> fx, fy, ft;  // force on the disc, tangential force along s
   std::vector<std::int32_t> row_start;  // per disc
 
@@ -40,9 +41,10 @@ struct WallContacts {
 class NeighborSearch {
  public:
   // Rebuilds both lists for the current positions, keeping the history of pairs present before
-  // and after. `reach` is the skin: pairs with gap < skin are listed.
+  // and after. `reach` is the skin: pairs with gap < skin are listed. Without
+  // `tangential_history` (no friction anywhere) the tangential springs are left empty.
   void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
-               int threads, PairContacts& pairs, WallContacts& walls);
+               int threads, bool tangential_history, PairContacts& pairs, WallContacts& walls);
 
  private:
   std::vector<std::int32_t> cell_start_, cell_disc_;

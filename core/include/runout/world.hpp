@@ -79,6 +79,8 @@ class World {
   const WallContacts& wall_contacts() const { return wall_contacts_; }
   const StepProfile& profile() const { return profile_; }
   const Dissipation& dissipation() const { return ledger_; }
+  // False when mu = 0 for every contact: no tangential history is kept or computed.
+  bool frictional() const { return frictional_; }
   void set_track_energy(bool on) { settings_.track_energy = on; }
   void set_dissipation(const Dissipation& d) { ledger_ = d; }
   EnergyState energy(double reference_y) const;
@@ -106,9 +108,10 @@ class World {
   void rebuild_lists();
   void reorder_discs();
   void compute_forces();
-  template <class Law> void compute_forces_with();
-  template <class Law, bool kLedger> struct PassSums pair_forces();
-  template <class Law, bool kLedger> struct PassSums wall_forces();
+  template <bool kFriction> void compute_forces_for();
+  template <class Law, bool kFriction> void compute_forces_with();
+  template <class Law, bool kLedger, bool kFriction> struct PassSums pair_forces();
+  template <class Law, bool kLedger, bool kFriction> struct PassSums wall_forces();
   ForceSum force_sum() const;
   void finish_pass(const PassResult* results);
   void integrate_symplectic_euler();
@@ -126,6 +129,7 @@ class World {
   std::vector<Segment> segments_;
   ContactTable table_;
   StepSettings settings_;
+  bool frictional_;  // some contact has mu > 0: tangential springs are kept (SPEC §2)
   NeighborSearch search_;
   PairContacts pairs_;
   WallContacts wall_contacts_;
