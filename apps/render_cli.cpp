@@ -1,6 +1,6 @@
+// The picture module (runout_pictures.so): everything that draws, behind PictureApi.
 #include "render_cli.hpp"
 
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "picture_module.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
@@ -17,8 +18,6 @@
 #include "runout/setup.hpp"
 
 namespace runout::app {
-
-bool have_renderer() { return true; }
 
 namespace {
 
@@ -252,3 +251,17 @@ int compare_command(const CompareOptions& o) {
 }
 
 }  // namespace runout::app
+
+extern "C" __attribute__((visibility("default"))) const runout::app::PictureApi* runout_picture_api() {
+  using namespace runout::app;
+  static const PictureApi api = [] {
+    PictureApi a = expected_picture_api_layout(RUNOUT_BUILD_STAMP);
+    a.render = &render_command;
+    a.compare = &compare_command;
+    a.attach = &attach_pictures;
+    a.bench = &bench_frames;
+    a.plot = &plot_study;
+    return a;
+  }();
+  return &api;
+}

@@ -1,5 +1,6 @@
 // Command-line options for pictures (runout run, runout render) and the commands that only
-// exist with the renderer (render, compare).
+// exist with the renderer (render, compare). The binary declares them; the picture module
+// (picture_module.hpp) defines them, and picture_loader.cpp forwards each call to it.
 #pragma once
 
 #include <memory>
@@ -80,8 +81,5 @@ struct StudyPoint {
 // Log-log scatter of wall time against |delta mu| with the noise as an error bar, labelled,
 // as a PNG.
 void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path);
-
-// Whether this binary was built with the renderer.
-bool have_renderer();
 
 }  // namespace runout::app

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "prepare.hpp"
 #include "render_cli.hpp"
@@ -70,6 +71,14 @@ int run_command(const RunOptions& o) {
   SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_quick_scene(), source);
   if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
   if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
+  if (o.end_at_last_snapshot) {
+    // Nothing else asked for more: the run ends with the last picture (output.end_time, so the
+    // resolved scene repeats it).
+    if (o.pictures.snapshots.empty())
+      throw std::invalid_argument("--end-at-last-snapshot needs --snapshots (the times to stop after)");
+    const double last = parse_times(o.pictures.snapshots).back();
+    if (scene.output.end_time <= 0 || scene.output.end_time > last) scene.output.end_time = last;
+  }
   const SceneSetup setup = derive_setup(scene, source);
   check_runnable(scene, setup, source);
   const int threads = resolve_threads(o.threads, setup);

@@ -20,6 +20,7 @@ struct RunOptions {
   std::string cache_dir;   // empty: $XDG_CACHE_HOME/runout or ~/.cache/runout
   bool no_cache = false;
   bool quiet = false;
+  bool end_at_last_snapshot = false;  // stop at the last --snapshots time, at rest or not
   PictureOptions pictures;
 };
 

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   run_cmd->add_flag("--no-cache", run.no_cache, "always settle the pile afresh");
   run_cmd->add_flag("--quiet,-q", run.quiet, "no progress on stderr");
+  run_cmd->add_flag("--end-at-last-snapshot", run.end_at_last_snapshot,
+                    "stop at the last --snapshots time even before rest (the summary then says at_rest = false)");
   runout::app::add_picture_options(run_cmd, run.pictures, true);
 
   runout::app::BenchOptions bench;

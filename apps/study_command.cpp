@@ -173,21 +173,24 @@ int study_command(const StudyOptions& o) {
       SceneDef scene = seeded;
       v.apply(scene);
       const SceneSetup setup = derive_setup(scene, source);
-      World world = build_explicit_world(scene, setup, o.threads);
-      if (v.own_pile) {
-        world = prepare(scene, setup, o.threads, cache, true, true).world;
-      } else {
-        if (start.empty())
-          start = encode_checkpoint(prepare(seeded, derive_setup(seeded, source), o.threads, cache, true, true).world,
-                                    0, {});
-        decode_checkpoint(start, 0, world, "settled pile");
-      }
       StudyRun row;
       row.family = v.family; row.setting = v.setting; row.seed = seed;
       row.dt = setup.dt;
-      AvalancheRun run(world, scene, setup);
-      const auto t0 = Clock::now();
+      auto t0 = Clock::now();
+      // A pile that does not settle or a run that stops with a numerical error is a result
+      // too: it becomes a failed row, and the study goes on.
       try {
+        World world = build_explicit_world(scene, setup, o.threads);
+        if (v.own_pile) {
+          world = prepare(scene, setup, o.threads, cache, true, true).world;
+        } else {
+          if (start.empty())
+            start = encode_checkpoint(prepare(seeded, derive_setup(seeded, source), o.threads, cache, true, true).world,
+                                      0, {});
+          decode_checkpoint(start, 0, world, "settled pile");
+        }
+        AvalancheRun run(world, scene, setup);
+        t0 = Clock::now();
         const RunResult r = run.run();
         row.ok = true;
         row.steps = r.steps; row.particle_steps_per_second = r.particle_steps_per_second;

@@ -84,5 +84,30 @@ cp "$work/study/runs.csv" "$work/runs.before"
 check study-resume 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --resume --set output.end_time=1.0
 cmp -s "$work/runs.before" "$work/study/runs.csv" || { echo "FAIL study-resume: runs.csv changed"; fail=$((fail + 1)); }
 
+# Pictures come from a module loaded on demand: the binary itself links no rendering library,
+# a run without picture options works with no module at all, and one with them says what is
+# missing instead of drawing nothing.
+if ldd "$bin" | grep -Ei 'osmesa|llvm|avcodec|avformat|swscale|libpng|freetype'; then
+  echo "FAIL no_render_libs: the runout binary links a rendering library"; fail=$((fail + 1))
+else
+  pass=$((pass + 1))
+fi
+check no_module_plain 0 'mu_global' -- env RUNOUT_PICTURES_MODULE="$work/none.so" "$bin" run "$work/two.toml" --out "$work/plain" -q
+check no_module_snapshots 1 'picture module runout_pictures.so was not found' -- \
+  env RUNOUT_PICTURES_MODULE="$work/none.so" "$bin" run "$work/two.toml" --out "$work/nopic" -q --snapshots 1
+if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
+  check snapshots 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/pic" -q --snapshots 0,2 --size 320x180
+  for f in snapshot_t0.png snapshot_t2.png; do
+    [ -s "$work/pic/$f" ] || { echo "FAIL snapshots: $f missing"; fail=$((fail + 1)); }
+  done
+  check compare_same 0 'match: yes' -- "$bin" compare "$work/pic/snapshot_t0.png" "$work/pic/snapshot_t0.png"
+  # A run asked to end with its last snapshot stops there (t* = 2 of the scene's 5).
+  check end_at_snapshot 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/endsnap" -q --snapshots 0,2 \
+    --size 320x180 --end-at-last-snapshot
+  grep -qE '"t_star_end": 2\.0' "$work/endsnap/summary.json" ||
+    { echo "FAIL end_at_snapshot: did not stop at t* = 2"; grep t_star_end "$work/endsnap/summary.json"; fail=$((fail + 1)); }
+fi
+check end_needs_snapshots 1 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -37,6 +37,52 @@ TEST(Run, LoneRollingDiscDoesNotKeepTheMassMoving) {
   EXPECT_LT(std::hypot(p.x[1] - p.x[0], p.y[1] - p.y[0]), 0.5) << "the pair must stay in contact";
 }
 
+SceneDef pit_and_roller() {
+  SceneDef s = floor_scene();
+  s.walls.push_back({"pit_left", {{-0.25, 1.0}, {-0.25, 0.0}}, false});
+  s.walls.push_back({"pit_right", {{0.749, 0.0}, {0.749, 1.0}}, false});
+  s.particles = {testing::disc(0.0, 0.25, 0.5), testing::disc(0.4995, 0.25, 0.5),
+                 testing::disc(5.0, 0.25, 0.5, 0, 1.0, 0.0, -4.0)};
+  s.rest.max_time = 300.0;
+  return s;
+}
+
+// A run that goes on after rest (for a later snapshot) reports the deposit as it was when the
+// mass came to rest: the lone roller keeps moving the centre of mass, yet mu is the same as
+// in the run that stopped at rest — also across a checkpoint taken after rest.
+TEST(Run, GoingOnAfterRestDoesNotChangeTheMeasurements) {
+  const SceneDef s = pit_and_roller();
+  const SceneSetup setup = derive_setup(s);
+  World a = build_explicit_world(s, setup, 1);
+  AvalancheRun at_rest(a, s, setup);
+  const RunResult ra = at_rest.run();
+  ASSERT_TRUE(ra.at_rest);
+
+  const double later = ra.t_star_end + 40.0;
+  World b = build_explicit_world(s, setup, 1);
+  SceneDef first_part = s;
+  first_part.output.end_time = ra.t_star_end + 20.0;  // stop (a checkpoint) after rest ...
+  AvalancheRun run_b(b, first_part, setup);
+  run_b.set_min_end_time(later);
+  run_b.run();
+  const RunState saved = decode_run_state(encode_run_state(run_b.state()), "state");
+  AvalancheRun resumed(b, s, setup, saved);  // ... and resume to the later snapshot
+  resumed.set_min_end_time(later);
+  const RunResult rb = resumed.run();
+
+  EXPECT_NEAR(rb.t_star_end, later, 0.1);
+  EXPECT_TRUE(rb.at_rest);
+  EXPECT_EQ(rb.t_star_rest, ra.t_star_rest);
+  EXPECT_EQ(rb.mu_global, ra.mu_global);
+  EXPECT_EQ(rb.L_cm, ra.L_cm);
+  EXPECT_EQ(rb.com_rest.x(), ra.com_rest.x());
+  EXPECT_EQ(rb.final_energy.x_cm, ra.final_energy.x_cm);
+  // The roller did move on: measured at the end, the centre of mass (three equal discs) would
+  // be a third of the roller's 40 t* at 1 m/s further.
+  const double roller_travel = (rb.t_star_end - ra.t_star_end) * setup.unit_time * 1.0;
+  EXPECT_NEAR(centre_of_mass(b.particles()).x() - rb.com_rest.x(), roller_travel / 3.0, 0.01);
+}
+
 class Recorder : public Observer {
  public:
   void observe(const World&, double t_star) override { times.push_back(t_star); }

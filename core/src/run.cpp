@@ -20,6 +20,15 @@ std::string encode_run_state(const RunState& s) {
   w.put(s.worst_residual);
   w.put(s.max_overlap);
   w.put_vector(s.series);
+  w.put(static_cast<std::uint8_t>(s.rest_frozen));
+  if (s.rest_frozen) {
+    const Particles& p = s.rest_particles;
+    w.put(s.t_star_rest);
+    w.put(s.rest_sample);
+    for (const auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass}) w.put_vector(*v);
+    w.put_vector(p.species);
+    w.put_vector(p.id);
+  }
   return w.bytes();
 }
 
@@ -37,6 +46,19 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   s.worst_residual = r.get<double>();
   s.max_overlap = r.get<double>();
   s.series = r.get_vector<TimeseriesRow>();
+  s.rest_frozen = r.get<std::uint8_t>() != 0;
+  if (s.rest_frozen) {
+    Particles& p = s.rest_particles;
+    s.t_star_rest = r.get<double>();
+    s.rest_sample = r.get<TimeseriesRow>();
+    for (auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass}) *v = r.get_vector<double>();
+    p.species = r.get_vector<std::int32_t>();
+    p.id = r.get_vector<std::int64_t>();
+    for (const auto* v : {&p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass})
+      if (v->size() != p.x.size()) throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
+    if (p.species.size() != p.x.size() || p.id.size() != p.x.size())
+      throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
+  }
   return s;
 }
 
@@ -181,12 +203,24 @@ bool AvalancheRun::finished() {
     if (state_.below_since < 0) state_.below_since = now;
     at_rest_ = now - state_.below_since >= scene_.rest.hold;
     if (at_rest_ && may_stop) return true;
+    if (at_rest_ && !state_.rest_frozen) freeze_rest();
   } else {
     state_.below_since = -1;
     at_rest_ = false;
   }
   if (scene_.output.end_time > 0 && now >= scene_.output.end_time - half_step) return true;
   return now >= std::max(scene_.rest.max_time, min_end_time_);
+}
+
+void AvalancheRun::freeze_rest() {
+  const Particles& p = world_.particles();
+  Particles& f = state_.rest_particles;
+  f = Particles{};
+  f.x = p.x; f.y = p.y; f.vx = p.vx; f.vy = p.vy; f.omega = p.omega;
+  f.radius = p.radius; f.mass = p.mass; f.species = p.species; f.id = p.id;
+  state_.rest_sample = sample();
+  state_.t_star_rest = state_.below_since;
+  state_.rest_frozen = true;
 }
 
 RunResult AvalancheRun::run() {
@@ -238,10 +272,13 @@ RunResult AvalancheRun::run() {
 
 RunResult AvalancheRun::result(double wall_seconds) const {
   RunResult r;
-  const auto& p = world_.particles();
-  r.at_rest = at_rest_;
+  // The deposit is measured when the mass first came to rest, even if the run went on.
+  const bool frozen = state_.rest_frozen;
+  const auto& p = frozen ? state_.rest_particles : world_.particles();
+  r.at_rest = frozen || at_rest_;
   r.t_star_end = t_star();
-  if (at_rest_) r.t_star_rest = state_.below_since;
+  if (frozen) r.t_star_rest = state_.t_star_rest;
+  else if (at_rest_) r.t_star_rest = state_.below_since;
   r.steps = world_.step_count();
   r.dt = setup_.dt;
   r.wall_seconds = wall_seconds;
@@ -268,7 +305,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.H_layer_over_d = r.basal_layer.mean_thickness / setup_.unit_length;
   r.H_layer_over_d_spread = r.basal_layer.spread / setup_.unit_length;
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
-  r.final_energy = sample();
+  r.final_energy = frozen ? state_.rest_sample : sample();
   r.worst_energy_residual = std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0));
   r.max_overlap = std::max(state_.max_overlap, r.final_energy.max_overlap);
   r.profile = world_.profile();

@@ -94,6 +94,12 @@ struct RunState {
   double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0;
   double worst_residual = 0;  // largest |residual| / Ep0 seen
   double max_overlap = 0;     // largest overlap / smaller radius seen in the samples
+  // The discs when the mass first came to rest, kept only when the run goes on after that
+  // (to a later snapshot): the deposit is measured there, so pictures never change results.
+  bool rest_frozen = false;
+  double t_star_rest = 0;
+  Particles rest_particles;  // x, y, vx, vy, omega, radius, mass, species, id
+  TimeseriesRow rest_sample;
 };
 std::string encode_run_state(const RunState& s);
 RunState decode_run_state(const std::string& bytes, const std::string& name);
@@ -125,6 +131,7 @@ class AvalancheRun {
   };
   void fire_observers();
   bool finished();
+  void freeze_rest();
   RunResult result(double wall_seconds) const;
 
   World& world_;
