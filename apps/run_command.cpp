@@ -144,7 +144,7 @@ int run_command(const RunOptions& o) {
   ctx.preparation_seconds = prepared.seconds;
   for (const auto& sp : scene.species) ctx.species_names.push_back(sp.name);
 
-  io::write_file_atomically(o.out_dir + "/timeseries.csv", io::timeseries_csv(run.state().series));
+  io::write_file_atomically(o.out_dir + "/timeseries.csv", io::timeseries_csv(run.state().series, scene.output.series));
   io::write_file_atomically(checkpoint_path, encode_checkpoint(world, key, encode_run_state(run.state())));
   io::write_file_atomically(o.out_dir + "/summary.json", io::summary_json(result, ctx));
 

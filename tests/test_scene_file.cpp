@@ -60,6 +60,19 @@ TEST(SceneFile, OutOfRangeNamesTheRange) {
   expect_error(kGood + "[contact]\ndesign_max_overlap = -1\n", {"contact.design_max_overlap", "(0, 0.5]"});
 }
 
+TEST(SceneFile, SeriesSelection) {
+  const SceneDef s = io::read_scene(kGood + "[output]\nseries = [\"energy\", \"front\"]\n", "good.toml");
+  EXPECT_TRUE(s.output.series.energy);
+  EXPECT_TRUE(s.output.series.front);
+  EXPECT_FALSE(s.output.series.segregation);
+  EXPECT_FALSE(s.output.series.basal_spin);
+  EXPECT_FALSE(s.output.series.overlap);
+  const SceneDef back = io::read_scene(io::write_scene(s), "resolved.toml");
+  EXPECT_FALSE(back.output.series.segregation);
+  EXPECT_TRUE(back.output.series.front);
+  expect_error(kGood + "[output]\nseries = [\"spin\"]\n", {"output.series", "\"spin\"", "basal_spin", "segregation"});
+}
+
 TEST(SceneFile, BadChoiceListsTheOptions) {
   expect_error(kGood + "[contact]\nnormal_model = \"hooke\"\n",
                {"contact.normal_model", "\"hooke\"", "walton_braun", "linear_dashpot", "hertz"});

@@ -107,7 +107,7 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
   state_.com_release = centre_of_mass(p);
   state_.top_release = highest_point(p);
   state_.next_sample = 0;
-  world.set_track_energy(true);
+  world.set_track_energy(scene.output.series.energy);
   const EnergyState e = world.energy(state_.energy_reference_y);
   state_.energy_total0 = e.translational + e.rotational + e.potential + e.elastic;
   state_.committed0 = e.committed_normal;
@@ -118,7 +118,7 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
 AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
                            RunState state)
     : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {
-  world.set_track_energy(true);
+  world.set_track_energy(scene.output.series.energy);
 }
 
 void AvalancheRun::add_observer(Observer& observer, Schedule schedule) {
@@ -145,27 +145,40 @@ TimeseriesRow AvalancheRun::sample() const {
   const Eigen::Vector2d com = centre_of_mass(p);
   row.x_cm = com.x() / d;
   row.y_cm = com.y() / d;
-  const SegregationHeights h = mean_heights(p, world_.segments(), setup_.roles);
-  row.small_mean_height = h.small / d;
-  row.large_mean_height = h.large / d;
-  row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
-  row.front_x = farthest_edge_x(p) / d;
-  const auto& c = world_.pairs();
-  for (std::size_t q = 0; q < c.size(); ++q) {
-    const std::int32_t i = c.i[q], j = c.j[q];
-    const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-    row.max_overlap = std::max(row.max_overlap, overlap / std::min(p.radius[i], p.radius[j]));
+  // Only the series an output asks for (OutputDef::series); the others stay NaN.
+  const SeriesSelection& want = scene_.output.series;
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  row.small_mean_height = row.large_mean_height = row.basal_spin = row.front_x = row.max_overlap = none;
+  row.ep_over_ep0 = row.elastic_over_ep0 = row.dissipated_normal_over_ep0 = none;
+  row.dissipated_friction_over_ep0 = row.residual_over_ep0 = none;
+  if (want.segregation) {
+    const SegregationHeights h = mean_heights(p, world_.segments(), setup_.roles);
+    row.small_mean_height = h.small / d;
+    row.large_mean_height = h.large / d;
   }
-  const EnergyState e = world_.energy(state_.energy_reference_y);
-  const Dissipation& lost = world_.dissipation();
-  const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
-  const double friction = lost.friction - state_.dissipated_friction0;
-  row.ep_over_ep0 = e.potential / ep0;
-  row.elastic_over_ep0 = e.elastic / ep0;
-  row.dissipated_normal_over_ep0 = normal / ep0;
-  row.dissipated_friction_over_ep0 = friction / ep0;
-  row.residual_over_ep0 = (state_.energy_total0 - (e.translational + e.rotational + e.potential + e.elastic +
-                                                   normal + friction)) / ep0;
+  if (want.basal_spin) row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
+  if (want.front) row.front_x = farthest_edge_x(p) / d;
+  if (want.overlap) {
+    row.max_overlap = 0;
+    const auto& c = world_.pairs();
+    for (std::size_t q = 0; q < c.size(); ++q) {
+      const std::int32_t i = c.i[q], j = c.j[q];
+      const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+      row.max_overlap = std::max(row.max_overlap, overlap / std::min(p.radius[i], p.radius[j]));
+    }
+  }
+  if (want.energy) {
+    const EnergyState e = world_.energy(state_.energy_reference_y);
+    const Dissipation& lost = world_.dissipation();
+    const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
+    const double friction = lost.friction - state_.dissipated_friction0;
+    row.ep_over_ep0 = e.potential / ep0;
+    row.elastic_over_ep0 = e.elastic / ep0;
+    row.dissipated_normal_over_ep0 = normal / ep0;
+    row.dissipated_friction_over_ep0 = friction / ep0;
+    row.residual_over_ep0 = (state_.energy_total0 - (e.translational + e.rotational + e.potential + e.elastic +
+                                                     normal + friction)) / ep0;
+  }
   return row;
 }
 
@@ -306,8 +319,11 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.H_layer_over_d_spread = r.basal_layer.spread / setup_.unit_length;
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   r.final_energy = frozen ? state_.rest_sample : sample();
-  r.worst_energy_residual = std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0));
-  r.max_overlap = std::max(state_.max_overlap, r.final_energy.max_overlap);
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  r.worst_energy_residual = scene_.output.series.energy
+                                ? std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0))
+                                : none;
+  r.max_overlap = scene_.output.series.overlap ? std::max(state_.max_overlap, r.final_energy.max_overlap) : none;
   r.profile = world_.profile();
   return r;
 }

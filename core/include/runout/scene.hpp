@@ -84,7 +84,20 @@ struct RestDef {
   double max_time = 2000.0;    // t*; not at rest by then ends the run as not at rest
 };
 
+// The analysis series a run computes and writes (timeseries.csv, the summary's ledger). Those
+// not selected are never computed: no dissipation counters in the pair pass without `energy`,
+// no bed distances without `segregation`, and so on. t*, E_k, E_rot and the centre of mass are
+// always there (the rest criterion and mu need them).
+struct SeriesSelection {
+  bool energy = true;       // the energy ledger (SPEC §8)
+  bool segregation = true;  // mean heights of small and large discs above the bed (SPEC §6)
+  bool basal_spin = true;   // of the small discs touching the bed (SPEC §6)
+  bool front = true;        // farthest disc edge
+  bool overlap = true;      // largest overlap / smaller radius among touching pairs
+};
+
 struct OutputDef {
+  SeriesSelection series;
   double timeseries_every = 0.5;  // t*
   double checkpoint_every = 50.0; // t*; 0 disables periodic checkpoints
   double dump_every = 0.0;        // t*; 0 disables LAMMPS dump frames

@@ -78,19 +78,49 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   return j.dump(2) + "\n";
 }
 
-std::string timeseries_csv(const std::vector<TimeseriesRow>& rows) {
-  std::string out =
-      "t_star,ek_over_ep0,erot_over_ep0,x_cm,y_cm,small_mean_height,large_mean_height,"
-      "basal_spin,front_x,ep_over_ep0,elastic_over_ep0,dissipated_normal_over_ep0,"
-      "dissipated_friction_over_ep0,residual_over_ep0,max_overlap\n";
-  char line[512];
+std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesSelection& want) {
+  // One column per quantity, only for the series the scene asked for (OutputDef::series).
+  struct Column {
+    const char* name;
+    const char* format;
+    double TimeseriesRow::*field;
+    bool on;
+  };
+  const Column columns[] = {
+      {"t_star", "%.6f", &TimeseriesRow::t_star, true},
+      {"ek_over_ep0", "%.9g", &TimeseriesRow::ek_over_ep0, true},
+      {"erot_over_ep0", "%.9g", &TimeseriesRow::erot_over_ep0, true},
+      {"x_cm", "%.9g", &TimeseriesRow::x_cm, true},
+      {"y_cm", "%.9g", &TimeseriesRow::y_cm, true},
+      {"small_mean_height", "%.9g", &TimeseriesRow::small_mean_height, want.segregation},
+      {"large_mean_height", "%.9g", &TimeseriesRow::large_mean_height, want.segregation},
+      {"basal_spin", "%.9g", &TimeseriesRow::basal_spin, want.basal_spin},
+      {"front_x", "%.9g", &TimeseriesRow::front_x, want.front},
+      {"ep_over_ep0", "%.9g", &TimeseriesRow::ep_over_ep0, want.energy},
+      {"elastic_over_ep0", "%.9g", &TimeseriesRow::elastic_over_ep0, want.energy},
+      {"dissipated_normal_over_ep0", "%.9g", &TimeseriesRow::dissipated_normal_over_ep0, want.energy},
+      {"dissipated_friction_over_ep0", "%.9g", &TimeseriesRow::dissipated_friction_over_ep0, want.energy},
+      {"residual_over_ep0", "%.3e", &TimeseriesRow::residual_over_ep0, want.energy},
+      {"max_overlap", "%.4g", &TimeseriesRow::max_overlap, want.overlap},
+  };
+  std::string out;
+  for (const auto& c : columns)
+    if (c.on) {
+      if (!out.empty()) out += ',';
+      out += c.name;
+    }
+  out += "\n";
+  char cell[64];
   for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.3e,%.4g\n",
-                  r.t_star, r.ek_over_ep0, r.erot_over_ep0, r.x_cm, r.y_cm, r.small_mean_height,
-                  r.large_mean_height, r.basal_spin, r.front_x, r.ep_over_ep0, r.elastic_over_ep0,
-                  r.dissipated_normal_over_ep0, r.dissipated_friction_over_ep0, r.residual_over_ep0,
-                  r.max_overlap);
-    out += line;
+    bool first = true;
+    for (const auto& c : columns) {
+      if (!c.on) continue;
+      std::snprintf(cell, sizeof cell, c.format, r.*c.field);
+      if (!first) out += ',';
+      out += cell;
+      first = false;
+    }
+    out += '\n';
   }
   return out;
 }

@@ -300,8 +300,25 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   }
   if (auto t = top.subtable("output")) {
     TableReader r(*t, "output", source);
-    r.allow({"timeseries_every", "checkpoint_every", "dump_every", "end_time",
+    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "end_time",
              "basal_layer_packing"}, "");
+    if (const toml::array* list = r.array("series")) {
+      SeriesSelection& sel = s.output.series;
+      sel = {false, false, false, false, false};
+      const std::vector<std::pair<std::string, bool*>> names = {
+          {"energy", &sel.energy}, {"segregation", &sel.segregation}, {"basal_spin", &sel.basal_spin},
+          {"front", &sel.front}, {"overlap", &sel.overlap}};
+      for (const auto& item : *list) {
+        const auto* name = item.as_string();
+        bool* flag = nullptr;
+        for (const auto& [n, f] : names)
+          if (name && n == name->get()) flag = f;
+        if (!flag)
+          r.fail("series", (name ? "\"" + std::string(name->get()) + "\"" : std::string("an item")) +
+                               " is not one of \"energy\", \"segregation\", \"basal_spin\", \"front\", \"overlap\"");
+        *flag = true;
+      }
+    }
     r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
     r.number("checkpoint_every", s.output.checkpoint_every, closed(0, 1e7));
     r.number("dump_every", s.output.dump_every, closed(0, 1e7));
@@ -458,7 +475,14 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
     root.insert("rest", toml::table{{"ek_threshold", s.rest.ek_threshold},
                                     {"hold", s.rest.hold},
                                     {"max_time", s.rest.max_time}});
-    root.insert("output", toml::table{{"timeseries_every", s.output.timeseries_every},
+    toml::array series;
+    const SeriesSelection& sel = s.output.series;
+    for (const auto& [name, on] : {std::pair{"energy", sel.energy}, std::pair{"segregation", sel.segregation},
+                                   std::pair{"basal_spin", sel.basal_spin}, std::pair{"front", sel.front},
+                                   std::pair{"overlap", sel.overlap}})
+      if (on) series.push_back(name);
+    root.insert("output", toml::table{{"series", series},
+                                      {"timeseries_every", s.output.timeseries_every},
                                       {"checkpoint_every", s.output.checkpoint_every},
                                       {"dump_every", s.output.dump_every},
                                       {"end_time", s.output.end_time},

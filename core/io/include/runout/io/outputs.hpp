@@ -23,7 +23,7 @@ struct SummaryContext {
 };
 
 std::string summary_json(const RunResult& r, const SummaryContext& c);
-std::string timeseries_csv(const std::vector<TimeseriesRow>& rows);
+std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesSelection& want = {});
 // One frame: ITEM: TIMESTEP ... ITEM: ATOMS id type x y radius vx vy omegaz (type = species + 1).
 std::string lammps_dump_frame(const World& world, double t_star);
 
