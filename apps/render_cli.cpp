@@ -174,7 +174,7 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
   const auto noise_of = [](const StudyPoint& p) { return std::isfinite(p.noise) ? p.noise : 0.0; };
   double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
   for (const auto& p : points) {
-    x0 = std::min(x0, p.wall_seconds); x1 = std::max(x1, p.wall_seconds);
+    x0 = std::min(x0, p.seconds_per_t_star); x1 = std::max(x1, p.seconds_per_t_star);
     for (double y : {p.mu_error, p.mu_error + noise_of(p)})
       if (y > 0) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
   }
@@ -201,7 +201,7 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
   img.fill_rect(left, H - bottom, W - right, H - bottom + 2, ink);
   img.fill_rect(left - 2, top, left, H - bottom, ink);
   text.draw(img, (W - text.width(title, 18)) / 2, 28, title, 18, ink);
-  const std::string xl = "wall time of a run, mean over the piles (s)";
+  const std::string xl = "wall seconds per t* of flow (runs end at different t*), mean over the piles";
   const std::string yl = "|mean mu - mean mu of the reference|; bars: +- 2 standard errors (0 on the axis)";
   text.draw(img, left + ((W - left - right) - text.width(xl, 15)) / 2, H - 20, xl, 15, ink);
   text.draw(img, left, top - 10, yl, 13, ink);
@@ -209,7 +209,7 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
   int number = 0;
   for (const auto& p : points) {
     ++number;
-    const double cx = px(p.wall_seconds), cy = py(p.mu_error);
+    const double cx = px(p.seconds_per_t_star), cy = py(p.mu_error);
     const double n = noise_of(p);
     if (n > 0) {
       const int ya = static_cast<int>(py(p.mu_error + n)), yb = static_cast<int>(p.mu_error - n > 0 ? py(p.mu_error - n) : H - bottom);

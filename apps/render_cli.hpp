@@ -74,7 +74,7 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
 // One variant of the accuracy study, for its plot: cost against error.
 struct StudyPoint {
   std::string label;
-  double wall_seconds = 0;  // mean over its piles
+  double seconds_per_t_star = 0;  // wall time per t* of flow, mean over its piles
   double mu_error = 0;      // |mean mu - mean mu of the reference|
   double noise = 0;         // two standard errors of that difference (NaN: one pile)
 };

@@ -259,7 +259,7 @@ int study_command(const StudyOptions& o) {
                   s.steps, s.wall, s.seconds_per_t_star, s.rate / 1e6, s.mu, s.mu_sd, error, noise, L_error, front_error,
                   s.max_overlap, s.residual);
     md += line;
-    points.push_back({v.family == "reference" ? "reference" : v.family + " " + v.setting, s.wall, error, noise});
+    points.push_back({v.family == "reference" ? "reference" : v.family + " " + v.setting, s.seconds_per_t_star, error, noise});
   }
   io::write_file_atomically(o.out_dir + "/study.csv", csv);
   io::write_file_atomically(o.out_dir + "/study.md", md);
