@@ -2,7 +2,6 @@
 // forwards to it. Nothing here touches a rendering library, so `runout run` without picture
 // options maps none (docs/performance.md).
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -45,9 +44,11 @@ const PictureApi& load_module() {
     const PictureApi* api = entry ? entry() : nullptr;
     if (!api || api->version != expected.version || std::strcmp(api->build_stamp, expected.build_stamp) != 0 ||
         api->world_size != expected.world_size || api->run_size != expected.run_size ||
-        api->picture_options_size != expected.picture_options_size)
+        api->picture_options_size != expected.picture_options_size) {
+      dlclose(handle);
       throw std::runtime_error("the picture module " + path +
                                " is from another build of runout; rebuild (cmake --build) or install both together");
+    }
     // Kept loaded for the life of the process: observers and frames it made are still in use.
     return *api;
   }

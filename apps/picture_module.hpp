@@ -36,5 +36,5 @@ inline PictureApi expected_picture_api_layout(const char* build_stamp) {
 }  // namespace runout::app
 
 // The module's one exported symbol.
-extern "C" const runout::app::PictureApi* runout_picture_api();
+extern "C" __attribute__((visibility("default"))) const runout::app::PictureApi* runout_picture_api();
 inline constexpr const char* kPictureApiSymbol = "runout_picture_api";

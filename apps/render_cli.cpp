@@ -174,13 +174,14 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
   const auto noise_of = [](const StudyPoint& p) { return std::isfinite(p.noise) ? p.noise : 0.0; };
   double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
   for (const auto& p : points) {
+    if (!(p.seconds_per_t_star > 0)) throw std::invalid_argument("a study point has no positive cost");
     x0 = std::min(x0, p.seconds_per_t_star); x1 = std::max(x1, p.seconds_per_t_star);
     for (double y : {p.mu_error, p.mu_error + noise_of(p)})
       if (y > 0) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
   }
   if (y1 <= 0) { y0 = 1e-4; y1 = 1e-1; }
-  const double lx0 = std::floor(std::log10(x0)), lx1 = std::ceil(std::log10(x1) + 1e-9);
-  const double ly0 = std::floor(std::log10(y0)), ly1 = std::ceil(std::log10(y1) + 1e-9);
+  const double lx0 = std::floor(std::log10(x0) - 0.15), lx1 = std::ceil(std::log10(x1) + 1e-9);
+  const double ly0 = std::floor(std::log10(y0) - 0.3), ly1 = std::ceil(std::log10(y1) + 1e-9);
   auto px = [&](double x) { return left + (std::log10(x) - lx0) / std::max(lx1 - lx0, 1.0) * (W - left - right); };
   auto py = [&](double y) {
     if (!(y > 0)) return double(H - bottom - 4);  // zero: drawn on the axis

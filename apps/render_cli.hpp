@@ -78,8 +78,8 @@ struct StudyPoint {
   double mu_error = 0;      // |mean mu - mean mu of the reference|
   double noise = 0;         // two standard errors of that difference (NaN: one pile)
 };
-// Log-log scatter of wall time against |delta mu| with the noise as an error bar, labelled,
-// as a PNG.
+// Log-log scatter of wall seconds per t* against |delta mu| with the noise as an error bar,
+// numbered, with a legend, as a PNG.
 void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path);
 
 }  // namespace runout::app

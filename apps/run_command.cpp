@@ -77,6 +77,9 @@ int run_command(const RunOptions& o) {
     if (o.pictures.snapshots.empty())
       throw std::invalid_argument("--end-at-last-snapshot needs --snapshots (the times to stop after)");
     const double last = parse_times(o.pictures.snapshots).back();
+    if (!(last > 0))
+      throw std::invalid_argument("--end-at-last-snapshot: the last snapshot must come after t* = 0 (got " +
+                                  o.pictures.snapshots + ")");
     if (scene.output.end_time <= 0 || scene.output.end_time > last) scene.output.end_time = last;
   }
   const SceneSetup setup = derive_setup(scene, source);
@@ -154,8 +157,7 @@ int run_command(const RunOptions& o) {
                  result.particle_steps_per_second);
   }
   std::printf("mu_global: %.6f\n", result.mu_global);
-  const bool ended_by_time = scene.output.end_time > 0 && result.t_star_end >= scene.output.end_time - 1e-9;
-  if (!result.at_rest && !ended_by_time) {
+  if (!result.at_rest && !result.reached_end_time) {
     std::fprintf(stderr,
                  "runout: the mass was not at rest by rest.max_time = %g (t*); summary.json says "
                  "at_rest = false. Raise rest.max_time or rest.ek_threshold.\n",

@@ -2,8 +2,10 @@
 // published answers (mu, L_cm, the front), measured on several piles because a granular
 // avalanche is chaotic: two runs that differ in the last bit of one force end with mu a few
 // hundredths apart, so a knob's effect is only told from that scatter by comparing means.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <map>
@@ -73,7 +75,7 @@ std::string run_row(const StudyRun& r) {
   for (char& c : why)
     if (c == ',' || c == '\n') c = ';';
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%llu,%s,%.9g,%lld,%.4f,%.6g,%.9f,%.9g,%.9g,%.6f,%.6f,%s,%.3f,",
+  std::snprintf(line, sizeof line, "%s,%s,%llu,%s,%.9g,%lld,%.6g,%.6g,%.9f,%.9g,%.9g,%.9g,%.9g,%s,%.3f,",
                 r.family.c_str(), r.setting.c_str(), static_cast<unsigned long long>(r.seed),
                 r.ok ? "ok" : "failed", r.dt, r.steps, r.wall_seconds, r.particle_steps_per_second, r.mu,
                 r.L_cm, r.front, r.max_overlap, r.residual, r.at_rest ? "true" : "false", r.t_star_end);
@@ -124,7 +126,9 @@ Summary summarise(const std::vector<const StudyRun*>& runs) {
     ++s.runs;
     s.wall += r->wall_seconds; s.steps += static_cast<double>(r->steps); s.seconds_per_t_star += r->wall_seconds / std::max(r->t_star_end, 1e-9);
     s.rate += r->particle_steps_per_second; s.mu += r->mu; s.L_cm += r->L_cm; s.front += r->front;
-    s.residual += r->residual; s.max_overlap = std::max(s.max_overlap, r->max_overlap);
+    s.residual += r->residual;
+    // NaN (the overlap series not selected) stays NaN.
+    s.max_overlap = std::isnan(r->max_overlap) || std::isnan(s.max_overlap) ? NAN : std::max(s.max_overlap, r->max_overlap);
   }
   if (s.runs == 0) return s;
   const double n = s.runs;
@@ -148,8 +152,19 @@ int study_command(const StudyOptions& o) {
   const std::string runs_path = o.out_dir + "/runs.csv";
   const std::vector<Variant> variants = study_variants();
 
+  // The scene (after --set) the runs belong to: --resume never mixes runs of two scenes.
+  const std::string key_path = o.out_dir + "/study.key";
+  char key_text[32];
+  std::snprintf(key_text, sizeof key_text, "%016llx\n",
+                static_cast<unsigned long long>(io::fnv1a64(io::write_scene(base))));
   std::vector<StudyRun> runs;
-  if (o.resume && io::file_exists(runs_path)) runs = read_runs(runs_path);
+  if (o.resume && io::file_exists(runs_path)) {
+    if (io::file_exists(key_path) && io::read_file(key_path) != key_text)
+      throw std::invalid_argument(runs_path + " holds runs of another scene or other --set values; "
+                                  "use another --out, or drop --resume to start again");
+    runs = read_runs(runs_path);
+  }
+  io::write_file_atomically(key_path, key_text);
   auto done = [&](const Variant& v, std::uint64_t seed) {
     for (const auto& r : runs)
       if (r.family == v.family && r.setting == v.setting && r.seed == seed) return true;
@@ -167,26 +182,33 @@ int study_command(const StudyOptions& o) {
     const std::uint64_t seed = seeded.preparation.seed;
     // Every variant of this seed starts from the same settled pile (settled with the scene's
     // own knobs), so within a seed the differences are the knobs', not another pile's.
-    std::string start;
+    std::string start, start_failure;
     for (const auto& v : variants) {
       if (done(v, seed)) continue;
-      SceneDef scene = seeded;
-      v.apply(scene);
-      const SceneSetup setup = derive_setup(scene, source);
       StudyRun row;
       row.family = v.family; row.setting = v.setting; row.seed = seed;
-      row.dt = setup.dt;
       auto t0 = Clock::now();
-      // A pile that does not settle or a run that stops with a numerical error is a result
-      // too: it becomes a failed row, and the study goes on.
+      // A setting refused at setup, a pile that does not settle or a run that stops with a
+      // numerical error is a result too: it becomes a failed row, and the study goes on.
       try {
+        SceneDef scene = seeded;
+        v.apply(scene);
+        const SceneSetup setup = derive_setup(scene, source);
+        row.dt = setup.dt;
         World world = build_explicit_world(scene, setup, o.threads);
         if (v.own_pile) {
           world = prepare(scene, setup, o.threads, cache, true, true).world;
         } else {
-          if (start.empty())
-            start = encode_checkpoint(prepare(seeded, derive_setup(seeded, source), o.threads, cache, true, true).world,
-                                      0, {});
+          if (!start_failure.empty()) throw NumericalError(start_failure);
+          if (start.empty()) {
+            try {
+              start = encode_checkpoint(
+                  prepare(seeded, derive_setup(seeded, source), o.threads, cache, true, true).world, 0, {});
+            } catch (const std::runtime_error& e) {
+              start_failure = std::string("the shared pile: ") + e.what();  // not settled again per variant
+              throw;
+            }
+          }
           decode_checkpoint(start, 0, world, "settled pile");
         }
         AvalancheRun run(world, scene, setup);
@@ -197,7 +219,7 @@ int study_command(const StudyOptions& o) {
         row.mu = r.mu_global; row.L_cm = r.L_cm; row.front = r.final_energy.front_x;
         row.max_overlap = r.max_overlap; row.residual = r.worst_energy_residual;
         row.at_rest = r.at_rest; row.t_star_end = r.t_star_end;
-      } catch (const NumericalError& e) {
+      } catch (const std::runtime_error& e) {  // ConfigError, NumericalError, IoError
         row.failure = e.what();
       }
       row.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -225,11 +247,31 @@ int study_command(const StudyOptions& o) {
   }
   const Summary& ref = summaries.back();
   if (ref.runs == 0) throw NumericalError("every reference run failed: " + ref.failure);
+  // mu of a variant against the reference, pile by pile (seed by seed): the mean difference
+  // and two standard errors of it. Below that noise the knob's effect on mu cannot be told
+  // from the pile-to-pile scatter.
+  auto mu_of = [&](const Variant& v, std::uint64_t seed) {
+    for (const auto& r : runs)
+      if (r.ok && r.family == v.family && r.setting == v.setting && r.seed == seed) return r.mu;
+    return double(NAN);
+  };
+  auto paired = [&](const Variant& v) {
+    std::vector<double> d;
+    for (std::uint64_t seed = first; seed < last; ++seed) {
+      const double a = mu_of(v, seed), b = mu_of(variants.back(), seed);
+      if (std::isfinite(a) && std::isfinite(b)) d.push_back(a - b);
+    }
+    double mean = 0, ss = 0;
+    for (double x : d) mean += x / d.size();
+    for (double x : d) ss += (x - mean) * (x - mean);
+    const double n = d.size();
+    return std::pair{std::abs(mean), d.size() > 1 ? 2 * std::sqrt(ss / (n - 1) / n) : double(NAN)};
+  };
 
   std::string csv = "family,setting,runs,failed,steps,wall_seconds,seconds_per_t_star,particle_steps_per_second,mu_mean,mu_sd,"
                     "mu_error,mu_noise_2se,L_cm_rel_error,front_rel_error,max_overlap,mean_worst_energy_residual\n";
   std::string md =
-      "| knob | setting | runs | steps | wall s | s per t* | M particle-steps/s | mu mean ± sd | abs. error of mean | 2 s.e. | "
+      "| knob | setting | runs | steps | wall s | s per t* | M particle-steps/s | mu mean ± sd | abs. mean difference to reference | 2 s.e. | "
       "L_cm rel. error | front rel. error | max overlap / r | residual / Ep0 |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<StudyPoint> points;
@@ -242,11 +284,8 @@ int study_command(const StudyOptions& o) {
       md += "| " + v.family + " | " + v.setting + " | failed: " + s.failure + " | | | | | | | | | | | |\n";
       continue;
     }
-    const double error = std::abs(s.mu - ref.mu);
-    // Two standard errors of the difference of two means: below it, the knob's effect on mu
-    // cannot be told from the pile-to-pile scatter.
-    const double noise = &s == &ref ? 2 * ref.standard_error()
-                                    : 2 * std::sqrt(std::pow(s.standard_error(), 2) + std::pow(ref.standard_error(), 2));
+    // The reference row shows the two standard errors of its own mean.
+    const auto [error, noise] = &s == &ref ? std::pair{0.0, 2 * ref.standard_error()} : paired(v);
     const double L_error = std::abs(s.L_cm - ref.L_cm) / ref.L_cm;
     const double front_error = std::abs(s.front - ref.front) / ref.front;
     std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.0f,%.3f,%.5f,%.4g,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.4f,%.4f\n",

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "runout/errors.hpp"
 #include "runout/run.hpp"
 #include "test_helpers.hpp"
 
@@ -83,6 +84,27 @@ TEST(Run, GoingOnAfterRestDoesNotChangeTheMeasurements) {
   EXPECT_NEAR(centre_of_mass(b.particles()).x() - rb.com_rest.x(), roller_travel / 3.0, 0.01);
 }
 
+// The ledger counts losses from release on: a run started without it cannot be resumed with
+// it (the losses before the checkpoint are unknown), and says so.
+TEST(Run, LedgerCannotStartAtAResume) {
+  SceneDef bare = pit_and_roller();
+  bare.output.series.energy = false;
+  bare.output.end_time = 2.0;
+  const SceneSetup setup = derive_setup(bare);
+  World w = build_explicit_world(bare, setup, 1);
+  AvalancheRun first(w, bare, setup);
+  first.run();
+  const RunState saved = decode_run_state(encode_run_state(first.state()), "state");
+  const SceneDef full = pit_and_roller();
+  try {
+    AvalancheRun resumed(w, full, setup, saved);
+    FAIL() << "a resume switched the ledger on midway";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("output.series"), std::string::npos) << e.what();
+  }
+  AvalancheRun resumed_bare(w, bare, setup, saved);  // the same selection resumes
+}
+
 class Recorder : public Observer {
  public:
   void observe(const World&, double t_star) override { times.push_back(t_star); }
@@ -99,7 +121,8 @@ TEST(Run, ObserversFireOnTheNearestStep) {
   Recorder every, at;
   run.add_observer(every, {1.0, 0.0, {}});
   run.add_observer(at, {0.0, 0.0, {0.25, 2.5}});
-  run.run();
+  const RunResult r = run.run();
+  EXPECT_TRUE(r.reached_end_time);  // even if t* ends up to half a step before 3
   const double half_step = 0.5 * setup.dt / setup.unit_time;
   ASSERT_EQ(every.times.size(), 4u);  // 0, 1, 2, 3
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(every.times[k], k, half_step + 1e-12);

@@ -11,6 +11,7 @@ namespace runout {
 
 std::string encode_run_state(const RunState& s) {
   ByteWriter w;
+  w.put(static_cast<std::uint8_t>(s.ledger));
   w.put(s.ep0); w.put(s.energy_reference_y);
   w.put(s.com_release.x()); w.put(s.com_release.y());
   w.put(s.top_release.top_x); w.put(s.top_release.top_y);
@@ -35,6 +36,7 @@ std::string encode_run_state(const RunState& s) {
 RunState decode_run_state(const std::string& bytes, const std::string& name) {
   ByteReader r(bytes, name);
   RunState s;
+  s.ledger = r.get<std::uint8_t>() != 0;
   s.ep0 = r.get<double>(); s.energy_reference_y = r.get<double>();
   s.com_release.x() = r.get<double>(); s.com_release.y() = r.get<double>();
   s.top_release.top_x = r.get<double>(); s.top_release.top_y = r.get<double>();
@@ -107,7 +109,8 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
   state_.com_release = centre_of_mass(p);
   state_.top_release = highest_point(p);
   state_.next_sample = 0;
-  world.set_track_energy(scene.output.series.energy);
+  state_.ledger = scene.output.series.energy;
+  world.set_track_energy(state_.ledger);
   const EnergyState e = world.energy(state_.energy_reference_y);
   state_.energy_total0 = e.translational + e.rotational + e.potential + e.elastic;
   state_.committed0 = e.committed_normal;
@@ -118,7 +121,13 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
 AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
                            RunState state)
     : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {
-  world.set_track_energy(scene.output.series.energy);
+  // The losses before the checkpoint were counted only if the ledger was on from release.
+  if (scene.output.series.energy && !state_.ledger)
+    throw ConfigError("checkpoint", "output.series",
+                      "the checkpoint was written by a run without the energy ledger, which cannot start midway: "
+                      "resume without \"energy\" in output.series, or start the run afresh");
+  world.set_track_energy(state_.ledger && scene.output.series.energy);
+  state_.ledger = state_.ledger && scene.output.series.energy;
 }
 
 void AvalancheRun::add_observer(Observer& observer, Schedule schedule) {
@@ -167,7 +176,7 @@ TimeseriesRow AvalancheRun::sample() const {
       row.max_overlap = std::max(row.max_overlap, overlap / std::min(p.radius[i], p.radius[j]));
     }
   }
-  if (want.energy) {
+  if (state_.ledger) {
     const EnergyState e = world_.energy(state_.energy_reference_y);
     const Dissipation& lost = world_.dissipation();
     const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
@@ -221,7 +230,10 @@ bool AvalancheRun::finished() {
     state_.below_since = -1;
     at_rest_ = false;
   }
-  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - half_step) return true;
+  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - half_step) {
+    reached_end_time_ = true;
+    return true;
+  }
   return now >= std::max(scene_.rest.max_time, min_end_time_);
 }
 
@@ -289,6 +301,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   const bool frozen = state_.rest_frozen;
   const auto& p = frozen ? state_.rest_particles : world_.particles();
   r.at_rest = frozen || at_rest_;
+  r.reached_end_time = reached_end_time_;
   r.t_star_end = t_star();
   if (frozen) r.t_star_rest = state_.t_star_rest;
   else if (at_rest_) r.t_star_rest = state_.below_since;
@@ -320,7 +333,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   r.final_energy = frozen ? state_.rest_sample : sample();
   constexpr double none = std::numeric_limits<double>::quiet_NaN();
-  r.worst_energy_residual = scene_.output.series.energy
+  r.worst_energy_residual = state_.ledger
                                 ? std::max(state_.worst_residual, std::abs(r.final_energy.residual_over_ep0))
                                 : none;
   r.max_overlap = scene_.output.series.overlap ? std::max(state_.max_overlap, r.final_energy.max_overlap) : none;

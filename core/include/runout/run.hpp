@@ -57,6 +57,7 @@ struct Schedule {
 
 struct RunResult {
   bool at_rest = false;
+  bool reached_end_time = false;  // stopped by output.end_time
   double t_star_rest = std::numeric_limits<double>::quiet_NaN();
   double t_star_end = 0;
   std::int64_t steps = 0;
@@ -81,6 +82,7 @@ struct RunResult {
 
 // Everything a run carries between steps; saved in checkpoints so a run resumes exactly.
 struct RunState {
+  bool ledger = true;  // the energy ledger is kept (fixed at release: a resume cannot start it midway)
   double ep0 = 0;
   double energy_reference_y = 0;
   Eigen::Vector2d com_release{0, 0};
@@ -95,10 +97,12 @@ struct RunState {
   double worst_residual = 0;  // largest |residual| / Ep0 seen
   double max_overlap = 0;     // largest overlap / smaller radius seen in the samples
   // The discs when the mass first came to rest, kept only when the run goes on after that
-  // (to a later snapshot): the deposit is measured there, so pictures never change results.
+  // (to a later snapshot): the deposit (mu, L_cm, H/L, basal layer, final sample) is measured
+  // there, so a later snapshot does not change it. Run-long figures (peak E_k, worst residual,
+  // largest overlap, the time series) still cover the whole run.
   bool rest_frozen = false;
   double t_star_rest = 0;
-  Particles rest_particles;  // x, y, vx, vy, omega, radius, mass, species, id
+  Particles rest_particles;  // only x, y, vx, vy, omega, radius, mass, species, id are filled
   TimeseriesRow rest_sample;
 };
 std::string encode_run_state(const RunState& s);
@@ -141,6 +145,7 @@ class AvalancheRun {
   std::vector<Scheduled> observers_;
   std::function<void(double, double, double)> progress_;
   bool at_rest_ = false;
+  bool reached_end_time_ = false;
   double min_end_time_ = 0;
 };
 
