@@ -78,7 +78,9 @@ b=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/res/summary.json")
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
 [ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || { echo "FAIL study: runs.csv should have 11 x 2 rows"; fail=$((fail + 1)); }
-[ -s "$work/study/study.png" ] || { echo "FAIL study: no plot"; fail=$((fail + 1)); }
+if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then  # the plot needs the picture module
+  [ -s "$work/study/study.png" ] || { echo "FAIL study: no plot"; fail=$((fail + 1)); }
+fi
 # Resuming a finished study reruns nothing: the same rows, the same table.
 cp "$work/study/runs.csv" "$work/runs.before"
 check study-resume 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --resume --set output.end_time=1.0
@@ -104,7 +106,7 @@ if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
   # A run asked to end with its last snapshot stops there (t* = 2 of the scene's 5).
   check end_at_snapshot 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/endsnap" -q --snapshots 0,2 \
     --size 320x180 --end-at-last-snapshot
-  grep -qE '"t_star_end": 2\.0' "$work/endsnap/summary.json" ||
+  awk -F': ' '/"t_star_end"/ { t = $2 + 0; ok = (t > 1.9 && t < 2.1) } END { exit !ok }' "$work/endsnap/summary.json" ||
     { echo "FAIL end_at_snapshot: did not stop at t* = 2"; grep t_star_end "$work/endsnap/summary.json"; fail=$((fail + 1)); }
 fi
 check end_needs_snapshots 1 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
