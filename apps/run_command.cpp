@@ -152,8 +152,12 @@ int run_command(const RunOptions& o) {
   io::write_file_atomically(o.out_dir + "/summary.json", io::summary_json(result, ctx));
 
   if (!o.quiet) {
-    std::fprintf(stderr, "runout: %s at t* = %.2f; mu_global = H_cm/L_cm = %.4f; %.3g particle-steps/s\n",
-                 result.at_rest ? "at rest" : "stopped", result.t_star_end, result.mu_global,
+    if (result.at_rest)
+      std::fprintf(stderr, "runout: at rest from t* = %.2f, deposit measured at t* = %.2f (run ended at t* = %.2f)",
+                   result.t_star_rest, result.final_energy.t_star, result.t_star_end);
+    else
+      std::fprintf(stderr, "runout: stopped at t* = %.2f, not at rest", result.t_star_end);
+    std::fprintf(stderr, "; mu_global = H_cm/L_cm = %.4f; %.3g particle-steps/s\n", result.mu_global,
                  result.particle_steps_per_second);
   }
   std::printf("mu_global: %.6f\n", result.mu_global);
