@@ -36,6 +36,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
     counts[c.species_names[k]] = r.counts[k];
   j["counts"] = counts;
   j["at_rest"] = r.at_rest;
+  j["reached_end_time"] = r.reached_end_time;  // stopped by output.end_time (or --end-at-last-snapshot)
   j["t_star_rest"] = number(r.t_star_rest);
   j["t_star_end"] = number(r.t_star_end);
   j["steps"] = r.steps;
