@@ -200,26 +200,25 @@ struct PairKernel {
       const double overlap = rsum - dist;  // eq. 2.1
       const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
       const double overlap_rate = -(dvx * nx + dvy * ny);
+      // Without friction (kFriction false) the slip, the spring and F_t are never loaded,
+      // computed or stored; the per-pair ft stays the zero the list rebuild wrote.
+      const double slip = kFriction ? -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]) : 0.0;  // eq. 2.7
       const std::int32_t kind = species[i] * species_count + species[j];
       double history_overlap = overlap_max[q];
+      double history_spring = kFriction ? spring[q] : 0.0;
       const double previous_max = history_overlap;
+      const double trial = history_spring + slip * dt;
       const double fn = Law::force(normal[kind], overlap, overlap_rate, history_overlap);
-      double f_t = 0;
-      if constexpr (kFriction) {
-        const double slip = -dvx * ny + dvy * nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
-        double history_spring = spring[q];
-        const double trial = history_spring + slip * dt;
-        f_t = tangential_force(tangential[kind], fn, slip * dt, history_spring);
-        spring[q] = touching ? history_spring : 0.0;
-        // Sliding loses |F_t| times the slip the spring did not take.
-        if constexpr (kLedger) loss_friction += touching ? std::abs(f_t * (trial - history_spring)) : 0.0;
-      }
+      const double f_t = kFriction ? tangential_force(tangential[kind], fn, slip * dt, history_spring) : 0.0;
       if constexpr (kLedger) {
-        // A contact that ends banks its committed hysteresis; a dashpot loses its power over the step.
+        // Sliding loses |F_t| times the slip the spring did not take; a contact that ends
+        // banks its committed hysteresis; a dashpot loses its power over the step.
+        if constexpr (kFriction) loss_friction += touching ? std::abs(f_t * (trial - history_spring)) : 0.0;
         loss_normal += touching ? Law::dashpot_power(normal[kind], overlap, overlap_rate) * dt
                                 : Law::committed_loss(normal[kind], previous_max);
       }
       overlap_max[q] = touching ? history_overlap : 0.0;
+      if constexpr (kFriction) spring[q] = touching ? history_spring : 0.0;
       const double fn_on = touching ? fn : 0.0, ft_on = touching ? f_t : 0.0;
       // Force on i: normal pushes i away from j, tangential acts along s = (-ny, nx).
       fx[q] = -fn_on * nx - ft_on * ny;
