@@ -33,22 +33,25 @@ starts=()
 for i in $(seq 20); do starts+=("$(seconds "$bin" --version)"); done
 echo "start_up_seconds_median_of_20: $(median "${starts[@]}")"
 
+# compare LABEL_A LABEL_B -- ARGS_A -- ARGS_B: REPEAT alternating timed `runout run SCENE` runs.
+compare() {
+  local la=$1 lb=$2; shift 3
+  local args_a=() args_b=()
+  while [ "$1" != "--" ]; do args_a+=("$1"); shift; done; shift
+  args_b=("$@")
+  local ta=() tb=()
+  for i in $(seq "$repeat"); do
+    ta+=("$(seconds "$bin" run "$scene" --out "$out/$la" -q --threads 1 "${args_a[@]}")")
+    tb+=("$(seconds "$bin" run "$scene" --out "$out/$lb" -q --threads 1 "${args_b[@]}")")
+  done
+  echo "${la}_seconds: ${ta[*]} median $(median "${ta[@]}")"
+  echo "${lb}_seconds: ${tb[*]} median $(median "${tb[@]}")"
+}
+
 echo "== series ($scene)"
 "$bin" run "$scene" --out "$out/warm" -q --threads 1 >/dev/null  # settle and cache the pile first
-all=() none=()
-for i in $(seq "$repeat"); do
-  all+=("$(seconds "$bin" run "$scene" --out "$out/all" -q --threads 1)")
-  none+=("$(seconds "$bin" run "$scene" --out "$out/none" -q --threads 1 --set 'output.series=[]')")
-done
-echo "all_series_seconds: ${all[*]} median $(median "${all[@]}")"
-echo "no_series_seconds: ${none[*]} median $(median "${none[@]}")"
+compare all_series no_series -- -- --set 'output.series=[]'
 
 echo "== snapshots 0,20,40 ($scene)"
-rest=() stop=()
-for i in $(seq "$repeat"); do
-  rest+=("$(seconds "$bin" run "$scene" --out "$out/rest" -q --threads 1 --snapshots 0,20,40)")
-  stop+=("$(seconds "$bin" run "$scene" --out "$out/stop" -q --threads 1 --snapshots 0,20,40 --end-at-last-snapshot)")
-done
-echo "to_rest_seconds: ${rest[*]} median $(median "${rest[@]}")"
-echo "end_at_last_snapshot_seconds: ${stop[*]} median $(median "${stop[@]}")"
-grep -h '"t_star_end"' "$out/rest/summary.json" "$out/stop/summary.json"
+compare to_rest end_at_last_snapshot -- --snapshots 0,20,40 -- --snapshots 0,20,40 --end-at-last-snapshot
+grep -h '"t_star_end"' "$out/to_rest/summary.json" "$out/end_at_last_snapshot/summary.json"

@@ -20,13 +20,7 @@ double restitution(double e_n, double v, double dt_fraction = 0.02) {
   s.integration.dt_fraction = dt_fraction;
   s.particles = {testing::disc(0.0, 0.0, 1.0, 0, v, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -v, 0.0)};
   World w = testing::zero_gravity_world(s);
-  bool touched = false;
-  for (int n = 0; n < 5'000'000; ++n) {
-    w.step();
-    const bool force = w.pairs().size() > 0 && w.pairs().fx[0] != 0.0;
-    touched |= force;
-    if (touched && !force) break;
-  }
+  testing::step_through_one_contact(w, [](const World& v) { return v.pairs().size() > 0 && v.pairs().fx[0] != 0.0; });
   return (w.particles().vx[1] - w.particles().vx[0]) / (2 * v);
 }
 

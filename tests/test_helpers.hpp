@@ -31,6 +31,18 @@ inline World zero_gravity_world(const SceneDef& scene, bool track_energy = false
   return World(w.particles(), w.segments(), w.table(), st);
 }
 
+// Steps until a contact has started and ended again (`in_contact` reads this step's force).
+template <class InContact>
+void step_through_one_contact(World& w, const InContact& in_contact) {
+  bool touched = false;
+  for (int n = 0; n < 5'000'000; ++n) {
+    w.step();
+    const bool force = in_contact(w);
+    touched |= force;
+    if (touched && !force) return;
+  }
+}
+
 // A small thesis-like pile (30 large-disc areas, D/d = 2) that settles in well under a second.
 inline SceneDef small_pile() {
   SceneDef s;

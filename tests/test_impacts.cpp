@@ -30,13 +30,8 @@ Rebound bounce(double vx, double vn, double omega0) {
   s.walls = {{"floor", {{-50.0, 0.0}, {50.0, 0.0}}, true}};
   s.particles = {testing::disc(0.0, kR + 1e-4, 2 * kR, 0, vx, -vn, omega0)};
   World w = testing::zero_gravity_world(s);
-  bool touched = false;
-  for (int n = 0; n < 5'000'000; ++n) {
-    w.step();
-    const bool force = w.wall_contacts().size() > 0 && w.wall_contacts().fy[0] != 0.0;
-    touched |= force;
-    if (touched && !force) break;
-  }
+  testing::step_through_one_contact(
+      w, [](const World& v) { return v.wall_contacts().size() > 0 && v.wall_contacts().fy[0] != 0.0; });
   return {w.particles().vx[0], w.particles().vy[0], w.particles().omega[0]};
 }
 

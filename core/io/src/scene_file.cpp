@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 #include <sstream>
 
 #include "runout/errors.hpp"
@@ -13,6 +14,12 @@
 namespace runout::io {
 
 namespace {
+
+// The names of output.series, read and written from this one list.
+constexpr std::pair<const char*, bool SeriesSelection::*> kSeriesNames[] = {
+    {"energy", &SeriesSelection::energy}, {"segregation", &SeriesSelection::segregation},
+    {"basal_spin", &SeriesSelection::basal_spin}, {"front", &SeriesSelection::front},
+    {"overlap", &SeriesSelection::overlap}};
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -303,20 +310,19 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "end_time",
              "basal_layer_packing"}, "");
     if (const toml::array* list = r.array("series")) {
-      SeriesSelection& sel = s.output.series;
-      sel = {false, false, false, false, false};
-      const std::vector<std::pair<std::string, bool*>> names = {
-          {"energy", &sel.energy}, {"segregation", &sel.segregation}, {"basal_spin", &sel.basal_spin},
-          {"front", &sel.front}, {"overlap", &sel.overlap}};
+      s.output.series = {false, false, false, false, false};
       for (const auto& item : *list) {
         const auto* name = item.as_string();
-        bool* flag = nullptr;
-        for (const auto& [n, f] : names)
+        bool SeriesSelection::*flag = nullptr;
+        std::string allowed;
+        for (const auto& [n, f] : kSeriesNames) {
           if (name && n == name->get()) flag = f;
+          allowed += (allowed.empty() ? "\"" : ", \"") + std::string(n) + "\"";
+        }
         if (!flag)
           r.fail("series", (name ? "\"" + std::string(name->get()) + "\"" : std::string("an item")) +
-                               " is not one of \"energy\", \"segregation\", \"basal_spin\", \"front\", \"overlap\"");
-        *flag = true;
+                               " is not one of " + allowed);
+        s.output.series.*flag = true;
       }
     }
     r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
@@ -476,11 +482,8 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                     {"hold", s.rest.hold},
                                     {"max_time", s.rest.max_time}});
     toml::array series;
-    const SeriesSelection& sel = s.output.series;
-    for (const auto& [name, on] : {std::pair{"energy", sel.energy}, std::pair{"segregation", sel.segregation},
-                                   std::pair{"basal_spin", sel.basal_spin}, std::pair{"front", sel.front},
-                                   std::pair{"overlap", sel.overlap}})
-      if (on) series.push_back(name);
+    for (const auto& [name, flag] : kSeriesNames)
+      if (s.output.series.*flag) series.push_back(name);
     root.insert("output", toml::table{{"series", series},
                                       {"timeseries_every", s.output.timeseries_every},
                                       {"checkpoint_every", s.output.checkpoint_every},
