@@ -7,6 +7,7 @@
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
+#include "runout/io/outputs.hpp"
 #include "runout/io/scene_file.hpp"
 
 namespace runout::app {
@@ -58,8 +59,10 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
     try {
       decode_checkpoint(io::read_file(path), key, world, path);
       if (!quiet) std::fprintf(stderr, "runout: settled pile from cache %s\n", path.c_str());
+      std::optional<SettleReport> settle;
+      if (io::file_exists(path + ".json")) settle = io::read_settle_report(io::read_file(path + ".json"));
       release(world, setup);
-      return {std::move(world), true, std::chrono::duration<double>(Clock::now() - t0).count()};
+      return {std::move(world), true, std::chrono::duration<double>(Clock::now() - t0).count(), settle};
     } catch (const IoError& e) {
       std::fprintf(stderr, "runout: warning: ignoring cached pile (%s); settling afresh\n", e.what());
     }
@@ -70,17 +73,25 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
   auto progress = [quiet](double t_star, double ratio) {
     if (!quiet) std::fprintf(stderr, "  settling t* = %7.2f  E_k/E_p = %.3e\n", t_star, ratio);
   };
-  world = build_settled_pile(scene, setup, threads, progress);
+  SettleReport settle;
+  world = build_settled_pile(scene, setup, threads, progress, &settle);
+  if (!quiet)
+    std::fprintf(stderr,
+                 "runout: pile settled at t* = %.2f (grown at %.2f); E_k/E_p = %.2e after %g t* "
+                 "without damping\n",
+                 settle.t_star_settled, settle.t_star_grown, settle.ek_over_ep_undamped,
+                 scene.preparation.settle_hold);
   if (use_cache) {
     try {
       io::make_directories(cache_dir);
+      io::write_file_atomically(path + ".json", io::settle_report_json(settle));
       io::write_file_atomically(path, encode_checkpoint(world, key, {}));
     } catch (const IoError& e) {
       std::fprintf(stderr, "runout: warning: could not cache the settled pile: %s\n", e.what());
     }
   }
   release(world, setup);
-  return {std::move(world), false, std::chrono::duration<double>(Clock::now() - t0).count()};
+  return {std::move(world), false, std::chrono::duration<double>(Clock::now() - t0).count(), settle};
 }
 
 }  // namespace runout::app

@@ -2,6 +2,7 @@
 // overrides) and get a released pile, settled afresh or read from the pile cache.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,7 @@ namespace runout::app {
 
 // Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
 // one that this binary would not have settled itself.
-inline constexpr int kPhysicsRevision = 5;
+inline constexpr int kPhysicsRevision = 6;
 
 // `path` empty: the embedded scene text, reported as `embedded_name` in errors.
 SceneDef load_scene(const std::string& path, const std::vector<std::string>& overrides,
@@ -26,6 +27,7 @@ struct PreparedWorld {
   World world;
   bool from_cache = false;
   double seconds = 0;  // settling or cache read
+  std::optional<SettleReport> settle;  // what settling measured (kept beside a cached pile)
 };
 
 // An avalanche scene: the settled pile (from the cache when `use_cache` and present), released.

@@ -145,6 +145,7 @@ int run_command(const RunOptions& o) {
   ctx.seed = scene.preparation.seed;
   ctx.pile_from_cache = prepared.from_cache;
   ctx.preparation_seconds = prepared.seconds;
+  ctx.settle = prepared.settle;
   for (const auto& sp : scene.species) ctx.species_names.push_back(sp.name);
 
   io::write_file_atomically(o.out_dir + "/timeseries.csv", io::timeseries_csv(run.state().series, scene.output.series));

@@ -40,6 +40,7 @@ diameter = 0.5
 [[walls]]
 points = [[-5.0, 0.0], [5.0, 0.0]]
 bed = true
+inside = "left"
 [[particles]]
 x = -1.0
 y = 0.25

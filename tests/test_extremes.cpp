@@ -133,7 +133,7 @@ TEST(Extremes, SizeRatioTwentyPileSettlesAndFlows) {
     release(w, setup);
     AvalancheRun run(w, s, setup);
     const RunResult r = run.run();
-    EXPECT_NEAR(r.t_star_end, 3.0, 0.01);
+    EXPECT_NEAR(r.t_star_end, 3.0, 0.06);  // end_time is checked every 1/20 t* (run.cpp)
     for (std::size_t k = 0; k < w.particles().size(); ++k) ASSERT_TRUE(std::isfinite(w.particles().x[k]));
     EXPECT_GT(r.com_rest.x(), r.com_release.x());  // it moved down-slope
   } catch (const NumericalError& e) {

@@ -151,7 +151,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       for (std::int32_t k = lo; k < hi; ++k) {
         const Eigen::Vector2d c(p.x[k], p.y[k]);
         for (std::int32_t s = 0; s < ns; ++s)
-          if (segments[s].active && distance_to(segments[s], c) < p.radius[k] + skin) {
+          if (segments[s].active && wall_candidate(segments[s], c, p.radius[k], skin)) {
             out.push_back(s);
             ++walls.row_start[k + 1];
           }

@@ -167,15 +167,7 @@ TimeseriesRow AvalancheRun::sample() const {
   }
   if (want.basal_spin) row.basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
   if (want.front) row.front_x = farthest_edge_x(p) / d;
-  if (want.overlap) {
-    row.max_overlap = 0;
-    const auto& c = world_.pairs();
-    for (std::size_t q = 0; q < c.size(); ++q) {
-      const std::int32_t i = c.i[q], j = c.j[q];
-      const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-      row.max_overlap = std::max(row.max_overlap, overlap / std::min(p.radius[i], p.radius[j]));
-    }
-  }
+  if (want.overlap) row.max_overlap = world_.largest_overlap_share();
   if (state_.ledger) {
     const EnergyState e = world_.energy(state_.energy_reference_y);
     const Dissipation& lost = world_.dissipation();

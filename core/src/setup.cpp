@@ -25,6 +25,8 @@ class Random {
 };
 
 constexpr double kDeg = kPi / 180.0;
+// The preparation damps a pile once E_k/E_p is below this many times the settle threshold.
+constexpr double kDampingOnset = 100.0;
 
 }  // namespace
 
@@ -78,12 +80,15 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
     const double back_x = gate_x - a.pile_width * D;
     const double floor_end = a.floor_length * D;
     const double h = a.wall_height * D;
+    // A closed container (walls.hpp): every face one-sided, the discs on the left of each
+    // polyline's direction, so no disc is squeezed through a wall (SPEC §2: rigid segments).
     // The bed: incline from the back wall's foot to the foot at (0, 0), then the floor.
-    s.walls.push_back({"bed", {{back_x, -back_x * t}, {0.0, 0.0}, {floor_end, 0.0}}, true});
-    s.walls.push_back({"back_wall", {{back_x, -back_x * t + h}, {back_x, -back_x * t}}, false});
+    const auto left = WallInside::left;
+    s.walls.push_back({"bed", {{back_x, -back_x * t}, {0.0, 0.0}, {floor_end, 0.0}}, true, left});
+    s.walls.push_back({"back_wall", {{back_x, -back_x * t + h}, {back_x, -back_x * t}}, false, left});
     s.gate_wall = static_cast<int>(s.walls.size());
-    s.walls.push_back({"gate", {{gate_x, -gate_x * t}, {gate_x, -gate_x * t + h}}, false});
-    s.walls.push_back({"end_wall", {{floor_end, 0.0}, {floor_end, h}}, false});
+    s.walls.push_back({"gate", {{gate_x, -gate_x * t}, {gate_x, -gate_x * t + h}}, false, left});
+    s.walls.push_back({"end_wall", {{floor_end, 0.0}, {floor_end, h}}, false, left});
   } else {
     s.counts.assign(scene.species.size(), 0);
     for (const auto& p : scene.particles) ++s.counts[p.species];
@@ -143,7 +148,8 @@ World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int t
 }
 
 World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int threads,
-                         const std::function<void(double, double)>& progress) {
+                         const std::function<void(double, double)>& progress,
+                         SettleReport* report) {
   const auto& a = *scene.avalanche;
   const auto& prep = scene.preparation;
   Random rng(prep.seed);
@@ -197,22 +203,32 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   World world(std::move(p), make_segments(setup.walls), setup.table,
               step_settings(scene, setup, threads));
 
-  // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4.
+  // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4. The
+  // pile is damped (PFC local damping, preparation.damping) while it grows and settles; once
+  // E_k/E_p has stayed below the threshold for settle_hold, the damping is switched off and the
+  // pile must stay below it for another settle_hold under the undamped law, or damping resumes.
+  // So the released pile is at rest under the very law the flow uses (SPEC §5).
   const double unit_time = setup.unit_time;
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(unit_time / setup.dt));
-  bool growing = true;
-  double below_since = -1;
-  // Growing discs placed at random overlap by construction, not by impact, and the pile needs
-  // its settling to relax them: no guard until it has settled.
-  world.set_overlap_guard(std::numeric_limits<double>::infinity());
+  const std::int64_t check_every = std::max<std::int64_t>(1, steps_per_unit / 10);
+  enum class Phase { growing, damped, undamped } phase = Phase::growing;
+  double since = -1;  // damped: below the threshold since; undamped: damping off since
+  SettleReport measured;
   const double gravity = scene.integration.gravity;
   for (std::int64_t step = 0;; ++step) {
     const double t_star = world.time() / unit_time;
-    if (growing) {
+    if (phase == Phase::growing) {
       const double shortfall = (1.0 - seed_fraction) * std::exp(-t_star / prep.growth_time);
-      growing = shortfall > 1e-4;
-      if (!growing) world.forget_normal_history();
-      const double scale = growing ? 1.0 - shortfall : 1.0;
+      const bool grown = shortfall <= 1e-4;
+      if (grown) {
+        world.forget_normal_history();
+        phase = Phase::damped;
+        measured.t_star_grown = t_star;
+      }
+      const double scale = grown ? 1.0 : 1.0 - shortfall;
+      // Every disc has the same share of its final radius: the guard judges overlaps against
+      // the final radii, so seeds placed inside each other are not taken for impacts.
+      world.set_overlap_guard(scene.contact.overlap_guard, scale);
       // By id: the world renumbers its discs spatially as they move.
       const auto& ids = world.particles().id;
       for (size_t k = 0; k < final_radius.size(); ++k) {
@@ -222,31 +238,57 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
       }
     }
     world.step();
-    if (step % std::max<std::int64_t>(1, steps_per_unit / 10) == 0) {
-      world.check_escape(setup.large_diameter);
-      const auto& pp = world.particles();
-      // As for rest after release (run.cpp): a disc rattling alone on top must not hold up
-      // a settled pile.
-      const double ratio = mass_kinetic_energy(world) / potential_energy(pp, gravity);
-      if (progress && step % (10 * std::max<std::int64_t>(1, steps_per_unit / 10)) == 0)
-        progress(t_star, ratio);
-      if (!growing && ratio < prep.settle_ek_threshold) {
-        if (below_since < 0) below_since = t_star;
-        if (t_star - below_since >= prep.settle_hold) {
-          world.set_overlap_guard(scene.contact.overlap_guard);
+    if (step % check_every != 0) continue;
+    world.check_escape(setup.large_diameter);
+    // As for rest after release (run.cpp): a disc rattling alone on top must not hold up
+    // a settled pile.
+    const double ratio = mass_kinetic_energy(world) / potential_energy(world.particles(), gravity);
+    if (progress && step % (10 * check_every) == 0) progress(t_star, ratio);
+    const bool quiet = ratio < prep.settle_ek_threshold;
+    // Damping only once the pile has collapsed and merely rings: damped, the collapse under
+    // gravity itself would be slowed to (1 - damping) g.
+    if (phase == Phase::damped && world.settings().local_damping == 0 &&
+        ratio < kDampingOnset * prep.settle_ek_threshold)
+      world.set_local_damping(prep.damping);
+    if (phase == Phase::damped) {
+      if (!quiet) {
+        since = -1;
+      } else if (since < 0) {
+        since = t_star;
+      } else if (t_star - since >= prep.settle_hold) {
+        if (prep.damping == 0) {  // the undamped law all along: settled
+          measured.ek_over_ep_undamped = ratio;
+          measured.t_star_settled = t_star;
           break;
         }
-      } else {
-        below_since = -1;
+        phase = Phase::undamped;
+        world.set_local_damping(0.0);
+        since = t_star;
       }
-      if (t_star > prep.settle_max_time) {
-        std::ostringstream msg;
-        msg << "the pile did not settle by t* = " << prep.settle_max_time << " (E_k/E_p = " << ratio
-            << "); raise preparation.settle_max_time or preparation.settle_ek_threshold";
-        throw NumericalError(msg.str());
+    } else if (phase == Phase::undamped) {
+      if (!quiet) {  // still ringing without damping: damp it again
+        phase = Phase::damped;
+        world.set_local_damping(prep.damping);
+        since = -1;
+        ++measured.damped_rounds;
+      } else if (t_star - since >= prep.settle_hold) {
+        measured.ek_over_ep_undamped = ratio;
+        measured.t_star_settled = t_star;
+        break;
       }
     }
+    if (t_star > prep.settle_max_time) {
+      std::ostringstream msg;
+      msg << "the pile did not settle by t* = " << prep.settle_max_time << " (step "
+          << world.step_count() << ", E_k/E_p = " << ratio << " against the threshold "
+          << prep.settle_ek_threshold << ", "
+          << (phase == Phase::growing ? "still growing" : "damped rounds: " + std::to_string(measured.damped_rounds + 1))
+          << "); raise preparation.settle_max_time";
+      throw NumericalError(msg.str());
+    }
   }
+  measured.peak_impact_overlap = world.peak_impact_overlap();
+  if (report) *report = measured;
   return world;
 }
 

@@ -226,7 +226,7 @@ struct PairKernel {
       if constexpr (kFriction) ft[q] = ft_on;
       // The guard watches impacts (loading faster than impact_rate), not the permanent set of
       // a static hysteretic contact.
-      worst = std::max(worst, touching && overlap_rate > impact_rate ? overlap / std::min(r[i], r[j]) : 0.0);
+      worst = std::max(worst, touching && overlap_rate > impact_rate ? overlap / rsum : 0.0);
     }
     return {worst, loss_normal, loss_friction};
   }
@@ -282,13 +282,10 @@ PassSums World::wall_forces() {
   for (std::int64_t q = 0; q < n; ++q) {
     const std::int32_t i = c.disc[q];
     const Segment& s = segments_[c.segment[q]];
-    const Eigen::Vector2d centre(p.x[i], p.y[i]);
-    const SegmentProjection proj = project(s, centre);
-    const Eigen::Vector2d d = proj.point - centre;
-    const double dist = d.norm();
-    const bool touching = s.active && !proj.at_free_end && dist < p.radius[i];
-    const Eigen::Vector2d normal = dist > 0 ? Eigen::Vector2d(d / dist) : Eigen::Vector2d(0, 0);
-    const double overlap = p.radius[i] - dist;
+    const WallTouch touch = wall_touch(s, {p.x[i], p.y[i]}, p.radius[i]);
+    const bool touching = s.active && touch.acts && touch.gap < p.radius[i];
+    const Eigen::Vector2d& normal = touch.normal;
+    const double overlap = p.radius[i] - touch.gap;
     const double overlap_rate = p.vx[i] * normal.x() + p.vy[i] * normal.y();
     const PairCoefficients& k = table_.wall[p.species[i]];
     double history_overlap = c.overlap_max[q];
@@ -313,7 +310,8 @@ PassSums World::wall_forces() {
     c.fx[q] = -fn_on * normal.x() - ft_on * normal.y();
     c.fy[q] = -fn_on * normal.y() + ft_on * normal.x();
     if constexpr (kFriction) c.ft[q] = ft_on;
-    worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / p.radius[i] : 0.0);
+    const double pass_through = p.radius[i] + (s.one_sided() ? behind_depth(p.radius[i]) : 0.0);
+    worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / pass_through : 0.0);
   }
   return {worst, loss_normal, loss_friction};
 }
@@ -348,7 +346,9 @@ void World::compute_forces() {
 
 // SPEC §8: an overlap beyond the guard means the contact is far stiffer-demanding than the
 // stiffness was designed for (too fast an impact, too large a step): stop with advice.
-void World::check_overlap(double worst) const {
+void World::check_overlap(double worst) {
+  worst *= guard_radius_scale_;
+  peak_impact_overlap_ = std::max(peak_impact_overlap_, worst);
   if (!(worst > settings_.overlap_guard)) return;
   const auto& p = particles_;
   std::int64_t a = -1, b = -1;
@@ -356,14 +356,15 @@ void World::check_overlap(double worst) const {
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
     const std::int32_t i = pairs_.i[q], j = pairs_.j[q];
     const double d = std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-    const double ratio = (p.radius[i] + p.radius[j] - d) / std::min(p.radius[i], p.radius[j]);
+    const double ratio = (p.radius[i] + p.radius[j] - d) / (p.radius[i] + p.radius[j]);
     if (ratio > found) { found = ratio; a = p.id[i]; b = p.id[j]; }
   }
   std::ostringstream msg;
-  msg << "overlap of " << static_cast<int>(100 * worst) << " % of the smaller radius (guard: "
+  msg << "an impact overlap of " << static_cast<int>(100 * worst)
+      << " % of the depth at which the contact is passed through (guard: "
       << static_cast<int>(100 * settings_.overlap_guard) << " %) at step " << steps_ << " (t* = "
       << time_ / settings_.unit_time << ")";
-  if (a >= 0 && found >= worst * 0.999) msg << " between discs " << a << " and " << b;
+  if (a >= 0 && found * guard_radius_scale_ >= worst * 0.999) msg << " between discs " << a << " and " << b;
   else msg << " against a wall";
   msg << ": an impact faster than the contact stiffness was designed for, or too large a step. "
          "Raise contact.design_impact_speed (stiffer contacts) or lower contact.design_max_overlap, "
@@ -402,6 +403,19 @@ struct ForceSum {
 
 namespace {
 
+// Local non-viscous damping (Cundall's, as in PFC): a - share |a| sgn(v) per component. It
+// removes kinetic energy without touching equilibrium (a resting disc feels nothing), so a
+// pile damped to rest is at rest under the undamped law too. Preparation only.
+inline void damp(double share, std::int64_t lo, std::int64_t hi, double* ax, double* ay,
+                 double* alpha, const double* vx, const double* vy, const double* om) {
+  auto sgn = [](double v) { return static_cast<double>((v > 0) - (v < 0)); };
+  for (std::int64_t k = lo; k < hi; ++k) {
+    ax[k] -= share * std::abs(ax[k]) * sgn(vx[k]);
+    ay[k] -= share * std::abs(ay[k]) * sgn(vy[k]);
+    alpha[k] -= share * std::abs(alpha[k]) * sgn(om[k]);
+  }
+}
+
 // Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread.
 template <class Body>
 void for_blocks(std::int64_t n, int threads, const Body& body) {
@@ -438,7 +452,7 @@ struct PassResult {
 void World::integrate_symplectic_euler() {
   auto& p = particles_;
   const ForceSum sum = force_sum();
-  const double dt = settings_.dt;
+  const double dt = settings_.dt, damping = settings_.local_damping;
   double* __restrict x = p.x.data(); double* __restrict y = p.y.data();
   double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
   double* __restrict om = p.omega.data(); double* __restrict angle = p.angle.data();
@@ -453,6 +467,7 @@ void World::integrate_symplectic_euler() {
     // The sums first (scalar, data-dependent lengths), then the update as a plain loop the
     // compiler vectorises.
     for (std::int64_t k = lo; k < hi; ++k) sum(k, ax[k], ay[k], alpha[k]);
+    if (damping > 0) damp(damping, lo, hi, ax, ay, alpha, vx, vy, om);
 #pragma omp simd reduction(max : max_d2) reduction(&& : finite)
     for (std::int64_t k = lo; k < hi; ++k) {
       vx[k] += ax[k] * dt;
@@ -504,7 +519,7 @@ void World::verlet_half_kick_and_drift() {
 void World::verlet_half_kick() {
   auto& p = particles_;
   const ForceSum sum = force_sum();
-  const double h = 0.5 * settings_.dt;
+  const double h = 0.5 * settings_.dt, damping = settings_.local_damping;
   const double* __restrict x = p.x.data(); const double* __restrict y = p.y.data();
   double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
   double* __restrict om = p.omega.data();
@@ -514,8 +529,9 @@ void World::verlet_half_kick() {
   for_blocks(static_cast<std::int64_t>(p.size()), settings_.threads,
              [&](std::int64_t lo, std::int64_t hi, int t) {
     bool finite = true;
+    for (std::int64_t k = lo; k < hi; ++k) sum(k, ax[k], ay[k], alpha[k]);
+    if (damping > 0) damp(damping, lo, hi, ax, ay, alpha, vx, vy, om);
     for (std::int64_t k = lo; k < hi; ++k) {
-      sum(k, ax[k], ay[k], alpha[k]);
       vx[k] += ax[k] * h;
       vy[k] += ay[k] * h;
       om[k] += alpha[k] * h;
@@ -566,13 +582,30 @@ EnergyState World::energy(double reference_y) const {
   for (std::size_t q = 0; q < wall_contacts_.size(); ++q) {
     const std::int32_t i = wall_contacts_.disc[q];
     const Segment& s = segments_[wall_contacts_.segment[q]];
-    const SegmentProjection proj = project(s, {p.x[i], p.y[i]});
-    const double overlap = p.radius[i] - (proj.point - Eigen::Vector2d(p.x[i], p.y[i])).norm();
-    if (s.active && !proj.at_free_end && overlap > 0)
+    const WallTouch touch = wall_touch(s, {p.x[i], p.y[i]}, p.radius[i]);
+    const double overlap = p.radius[i] - touch.gap;
+    if (s.active && touch.acts && overlap > 0)
       add(table_.wall[p.species[i]], overlap, wall_contacts_.overlap_max[q],
           frictional_ ? wall_contacts_.tangential_spring[q] : 0.0);
   }
   return e;
+}
+
+double World::largest_overlap_share() const {
+  const auto& p = particles_;
+  double largest = 0;
+  for (std::size_t q = 0; q < pairs_.size(); ++q) {
+    const std::int32_t i = pairs_.i[q], j = pairs_.j[q];
+    const double overlap = p.radius[i] + p.radius[j] - std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+    largest = std::max(largest, overlap / std::min(p.radius[i], p.radius[j]));
+  }
+  for (std::size_t q = 0; q < wall_contacts_.size(); ++q) {
+    const std::int32_t i = wall_contacts_.disc[q];
+    const Segment& s = segments_[wall_contacts_.segment[q]];
+    const WallTouch touch = wall_touch(s, {p.x[i], p.y[i]}, p.radius[i]);
+    if (s.active && touch.acts) largest = std::max(largest, 1.0 - touch.gap / p.radius[i]);
+  }
+  return largest;
 }
 
 void World::check_escape(double margin) const {

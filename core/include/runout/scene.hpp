@@ -27,7 +27,9 @@ struct ContactDef {
   double design_impact_speed = 10.0;  // alphadot0, units of sqrt(g r*)
   double design_max_overlap = 0.01;   // alphamax, fraction of r*
   double stiffness_ratio = 1.0;       // kratio = k_s / k_L
-  double overlap_guard = 1.0;         // stop when an impact overlaps beyond this share of the smaller radius
+  // Stop when an impact overlaps beyond this share of the depth at which its contact would be
+  // passed through (world.hpp): 0.75 is an overlap of 1.5 radii between equal discs.
+  double overlap_guard = 0.75;
 };
 
 struct IntegrationDef {
@@ -44,12 +46,18 @@ struct SpeciesDef {
   double area_share = 0;   // share of the total disc area (avalanche scenes)
 };
 
-// One straight rigid wall or a polyline of them. Consecutive segments share a vertex; the
-// vertex acts as one point contact, owned by the earlier segment (walls.hpp).
+// Which side of a wall the discs are on, seen along the polyline from its first point: a
+// one-sided wall bounds a container (a disc pressed past its line is still pushed back to
+// that side, so none passes through); `both` is a thin plate that pushes a disc to whichever
+// side its centre is on (walls.hpp).
+enum class WallInside { both, left, right };
+
+// One straight rigid wall or a polyline of them (walls.hpp says how vertices act).
 struct WallDef {
   std::string name;
   std::vector<std::pair<double, double>> points;  // at least two
   bool bed = false;        // counts as the bed for heights above bed and basal spin (SPEC §6)
+  WallInside inside = WallInside::both;
 };
 
 struct ParticleDef {
@@ -76,6 +84,8 @@ struct PreparationDef {
   double settle_ek_threshold = 1e-7;  // settled when E_k/Ep < this ...
   double settle_hold = 1.0;           // ... for this long (t*), after growth is done
   double settle_max_time = 200.0;     // t*; not settled by then is an error
+  // PFC local damping while the pile grows and settles (none in the flow); 0 settles undamped.
+  double damping = 0.7;
 };
 
 struct RestDef {

@@ -42,10 +42,22 @@ World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int t
 
 // The thesis pile (SPEC §5, fig. 3.1): centres at random in the box behind the gate, radii near
 // zero and random velocities; then radii grow exponentially to their final values and the pile
-// settles until its kinetic energy has gone. `progress` is called every t* unit with
-// (t*, E_k/E_p). Throws NumericalError if it does not settle within settle_max_time.
+// settles until its kinetic energy has gone, damped (preparation.damping) and then proved at
+// rest without damping. `progress` is called every t* unit with (t*, E_k/E_p). Throws
+// NumericalError if it does not settle within settle_max_time.
+// What the preparation measured: when growth ended, when the pile was released, and E_k/E_p
+// under the undamped law settle_hold t* after the damping was switched off (the proof that
+// the pile is at rest under the flow's own law).
+struct SettleReport {
+  double t_star_grown = 0, t_star_settled = 0;
+  double ek_over_ep_undamped = 0;
+  int damped_rounds = 0;  // times the undamped hold failed and damping resumed
+  double peak_impact_overlap = 0;  // World::peak_impact_overlap while the pile was prepared
+};
+
 World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int threads,
-                         const std::function<void(double, double)>& progress = {});
+                         const std::function<void(double, double)>& progress = {},
+                         SettleReport* report = nullptr);
 
 // Removes gate "A" and sets the clock to t* = 0 (SPEC §5 release).
 void release(World& world, const SceneSetup& setup);

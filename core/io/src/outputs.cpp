@@ -68,6 +68,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["wall_seconds"] = r.wall_seconds;
   j["preparation_seconds"] = c.preparation_seconds;
   j["pile_from_cache"] = c.pile_from_cache;
+  j["preparation"] = c.settle ? nlohmann::json::parse(settle_report_json(*c.settle)) : nlohmann::json();
   j["particle_steps_per_second"] = r.particle_steps_per_second;
   j["threads"] = c.threads;
   j["seed"] = c.seed;
@@ -77,6 +78,31 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
                           {"rebuild", r.profile.rebuild},
                           {"rebuilds", r.profile.rebuilds}};
   return j.dump(2) + "\n";
+}
+
+std::string settle_report_json(const SettleReport& s) {
+  const nlohmann::json j = {{"t_star_grown", s.t_star_grown},
+                            {"t_star_settled", s.t_star_settled},
+                            {"ek_over_ep_undamped", s.ek_over_ep_undamped},
+                            {"damped_rounds", s.damped_rounds},
+                            {"peak_impact_overlap", s.peak_impact_overlap}};
+  return j.dump(2) + "\n";
+}
+
+std::optional<SettleReport> read_settle_report(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return std::nullopt;
+  try {
+    SettleReport s;
+    s.t_star_grown = j.at("t_star_grown").get<double>();
+    s.t_star_settled = j.at("t_star_settled").get<double>();
+    s.ek_over_ep_undamped = j.at("ek_over_ep_undamped").get<double>();
+    s.damped_rounds = j.at("damped_rounds").get<int>();
+    s.peak_impact_overlap = j.at("peak_impact_overlap").get<double>();
+    return s;
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
 }
 
 std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesSelection& want) {

@@ -163,6 +163,8 @@ const std::vector<std::pair<std::string, NormalModel>> kNormalModels = {
     {"walton_braun", NormalModel::walton_braun},
     {"linear_dashpot", NormalModel::linear_dashpot},
     {"hertz", NormalModel::hertz}};
+const std::vector<std::pair<std::string, WallInside>> kWallSides = {
+    {"left", WallInside::left}, {"right", WallInside::right}, {"both", WallInside::both}};
 const std::vector<std::pair<std::string, IntegratorKind>> kIntegrators = {
     {"symplectic_euler", IntegratorKind::symplectic_euler},
     {"velocity_verlet", IntegratorKind::velocity_verlet}};
@@ -230,7 +232,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
     r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
     r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
-    r.number("overlap_guard", s.contact.overlap_guard, {0, 2, true, false});
+    r.number("overlap_guard", s.contact.overlap_guard, {0, 1, true, false});
     r.finish();
   }
   if (auto t = top.subtable("integration")) {
@@ -285,7 +287,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   if (auto t = top.subtable("preparation")) {
     TableReader r(*t, "preparation", source);
     r.allow({"seed", "initial_packing", "initial_speed", "growth_time", "settle_ek_threshold",
-             "settle_hold", "settle_max_time"}, "");
+             "settle_hold", "settle_max_time", "damping"}, "");
     std::int64_t seed = static_cast<std::int64_t>(s.preparation.seed);
     r.integer("seed", seed, 0, 9.2e18);
     s.preparation.seed = static_cast<std::uint64_t>(seed);
@@ -295,6 +297,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.number("settle_ek_threshold", s.preparation.settle_ek_threshold, {0, 1, true, false});
     r.number("settle_hold", s.preparation.settle_hold, closed(0, 1e4));
     r.number("settle_max_time", s.preparation.settle_max_time, {0, 1e6, true, false});
+    r.number("damping", s.preparation.damping, {0, 1, false, true});
     r.finish();
   }
   if (auto t = top.subtable("rest")) {
@@ -346,7 +349,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
       const std::string key = "walls[" + std::to_string(w) + "]";
       if (!(*a)[w].is_table()) throw ConfigError(source, key, "expected a table [[walls]]");
       TableReader r(*(*a)[w].as_table(), key, source);
-      r.allow({"name", "points", "bed"}, "");
+      r.allow({"name", "points", "bed", "inside"}, "");
       WallDef wall;
       wall.name = "wall" + std::to_string(w);
       r.string("name", wall.name);
@@ -358,6 +361,13 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
       for (size_t k = 0; k + 1 < wall.points.size(); ++k)
         if (wall.points[k] == wall.points[k + 1])
           r.fail("points[" + std::to_string(k + 1) + "]", "repeats the point before it (a zero-length segment)");
+      // Which side the discs are on is the scene's to say (walls.hpp): a one-sided face can
+      // never be passed, a two-sided plate can be once a squeezed disc's centre crosses it.
+      if (!r.has("inside"))
+        r.fail("inside", "is required: \"left\" or \"right\" of the direction from points[0] to "
+                         "points[1] (the side the discs are on; a one-sided wall no disc passes "
+                         "through), or \"both\" (a thin two-sided plate)");
+      r.choice("inside", wall.inside, kWallSides);
       r.finish();
       s.walls.push_back(wall);
     }
@@ -475,7 +485,8 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                            {"growth_time", p.growth_time},
                                            {"settle_ek_threshold", p.settle_ek_threshold},
                                            {"settle_hold", p.settle_hold},
-                                           {"settle_max_time", p.settle_max_time}});
+                                           {"settle_max_time", p.settle_max_time},
+                                           {"damping", p.damping}});
   }
   if (include_rest) {
     root.insert("rest", toml::table{{"ek_threshold", s.rest.ek_threshold},
@@ -503,7 +514,10 @@ std::string write_scene(const SceneDef& s) {
     for (const auto& w : s.walls) {
       toml::array pts;
       for (const auto& [x, y] : w.points) pts.push_back(toml::array{x, y});
-      walls.push_back(toml::table{{"name", w.name}, {"points", pts}, {"bed", w.bed}});
+      const char* inside = "both";
+      for (const auto& [name, value] : kWallSides)
+        if (value == w.inside) inside = name.c_str();
+      walls.push_back(toml::table{{"name", w.name}, {"points", pts}, {"bed", w.bed}, {"inside", inside}});
     }
     root.insert("walls", walls);
   }

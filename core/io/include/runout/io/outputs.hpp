@@ -2,10 +2,12 @@
 // them). Pure formatting; writing goes through write_file_atomically.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "runout/run.hpp"
+#include "runout/setup.hpp"
 
 namespace runout::io {
 
@@ -19,10 +21,15 @@ struct SummaryContext {
   std::uint64_t seed = 0;
   bool pile_from_cache = false;
   double preparation_seconds = 0;
+  std::optional<SettleReport> settle;  // an avalanche pile settled by this run or cached with it
   std::vector<std::string> species_names;
 };
 
 std::string summary_json(const RunResult& r, const SummaryContext& c);
+// The preparation's report as JSON (summary.json's "preparation", and the pile cache's record
+// beside each pile); reading returns nothing for text that is not such a record.
+std::string settle_report_json(const SettleReport& s);
+std::optional<SettleReport> read_settle_report(const std::string& text);
 std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesSelection& want = {});
 // One frame: ITEM: TIMESTEP ... ITEM: ATOMS id type x y radius vx vy omegaz (type = species + 1).
 std::string lammps_dump_frame(const World& world, double t_star);
