@@ -105,6 +105,15 @@ TEST(SceneFile, WallsNeedTwoDistinctPoints) {
   expect_error("[species.a]\ndiameter = 1.0\n[[walls]]\npoints = [[0.0, 0.0], [0.0, 0.0]]\n", {"walls[0].points[1]", "zero-length"});
 }
 
+TEST(SceneFile, WallsStateTheirInside) {
+  const std::string wall = "[species.a]\ndiameter = 1.0\n[[particles]]\nx = 0.0\ny = 1.0\n[[walls]]\npoints = [[-1.0, 0.0], [1.0, 0.0]]\n";
+  expect_error(wall, {"bad.toml", "walls[0].inside", "required", "\"left\"", "\"both\""});
+  expect_error(wall + "inside = \"up\"\n", {"walls[0].inside", "\"up\" is not one of \"left\", \"right\", \"both\""});
+  EXPECT_EQ(io::read_scene(wall + "inside = \"left\"\n", "w.toml").walls[0].inside, WallInside::left);
+  EXPECT_EQ(io::read_scene(wall + "inside = \"right\"\n", "w.toml").walls[0].inside, WallInside::right);
+  EXPECT_EQ(io::read_scene(wall + "inside = \"both\"\n", "w.toml").walls[0].inside, WallInside::both);
+}
+
 TEST(SceneFile, OverridesApplyAndAreChecked) {
   const SceneDef s = io::read_scene(kGood, "good.toml", {io::parse_override("contact.normal_model=hertz"),
                                                          io::parse_override("species.small.diameter=0.12")});
@@ -127,12 +136,13 @@ TEST(SceneFile, CoincidentCentresAreRejected) {
 
 TEST(SceneFile, ResolvedSceneReadsBackTheSame) {
   SceneDef s = io::read_scene(kGood, "good.toml", {io::parse_override("material.restitution=0.123456789012345")});
-  s.walls.push_back({"extra", {{0.1, 0.2}, {3.3, 4.4}}, true});
+  s.walls.push_back({"extra", {{0.1, 0.2}, {3.3, 4.4}}, true, WallInside::right});
   const std::string resolved = io::write_scene(s);
   const SceneDef back = io::read_scene(resolved, "resolved.toml");
   EXPECT_EQ(io::write_scene(back), resolved);
   EXPECT_DOUBLE_EQ(back.material.restitution, 0.123456789012345);
   EXPECT_DOUBLE_EQ(back.walls[0].points[1].second, 4.4);
+  EXPECT_EQ(back.walls[0].inside, WallInside::right);
 }
 
 TEST(SceneFile, ExampleScenesAllRead) {

@@ -25,7 +25,8 @@ class Random {
 };
 
 constexpr double kDeg = kPi / 180.0;
-// The preparation damps a pile once E_k/E_p is below this many times the settle threshold.
+// The preparation damps a pile once E_k/E_p is below this many times the settle threshold
+// (it merely rings), or once it has had twice the free-fall time of its box to collapse.
 constexpr double kDampingOnset = 100.0;
 
 }  // namespace
@@ -215,6 +216,7 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   double since = -1;  // damped: below the threshold since; undamped: damping off since
   SettleReport measured;
   const double gravity = scene.integration.gravity;
+  const double collapse_time = 2.0 * std::sqrt(2.0 * (y_top + back_x * t) / gravity) / unit_time;  // t*
   for (std::int64_t step = 0;; ++step) {
     const double t_star = world.time() / unit_time;
     if (phase == Phase::growing) {
@@ -245,10 +247,10 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
     const double ratio = mass_kinetic_energy(world) / potential_energy(world.particles(), gravity);
     if (progress && step % (10 * check_every) == 0) progress(t_star, ratio);
     const bool quiet = ratio < prep.settle_ek_threshold;
-    // Damping only once the pile has collapsed and merely rings: damped, the collapse under
-    // gravity itself would be slowed to (1 - damping) g.
+    // Damping only once the pile has collapsed: damped, the collapse under gravity itself
+    // would be slowed to (1 - damping) g.
     if (phase == Phase::damped && world.settings().local_damping == 0 &&
-        ratio < kDampingOnset * prep.settle_ek_threshold)
+        (ratio < kDampingOnset * prep.settle_ek_threshold || t_star >= measured.t_star_grown + collapse_time))
       world.set_local_damping(prep.damping);
     if (phase == Phase::damped) {
       if (!quiet) {

@@ -622,9 +622,17 @@ void World::check_escape(double margin) const {
       std::ostringstream msg;
       msg << "disc id " << p.id[k] << " left the domain at step " << steps_ << " (t* = "
           << time_ / settings_.unit_time << "), at (" << p.x[k] << ", " << p.y[k]
-          << ") m: it passed through a wall. Contacts are too soft for the squeeze or impact: "
-             "raise contact.design_impact_speed, lower integration.dt_fraction, or grow the pile "
-             "more slowly (preparation.growth_time)";
+          << ") m, moving at (" << p.vx[k] << ", " << p.vy[k] << ") m/s: ";
+      // One-sided walls cannot be squeezed through; a disc outside went over a wall's top, or
+      // through a two-sided plate or more than a diameter through a face (walls.hpp).
+      if (p.y[k] > y1 - margin)
+        msg << "it flew over the top of a wall (raise the walls: avalanche.wall_height, or the "
+               "scene's [[walls]])";
+      else
+        msg << "it was pushed through a wall (a two-sided plate once its centre crossed, or a "
+               "face by more than its diameter): give the scene's walls an inside, or raise "
+               "contact.design_impact_speed or lower integration.dt_fraction if the impact is "
+               "far beyond the contact's design";
       throw NumericalError(msg.str());
     }
   }
