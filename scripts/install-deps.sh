@@ -3,7 +3,7 @@
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 packages=(
-  build-essential cmake
+  build-essential cmake python3
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
   pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core

@@ -75,6 +75,19 @@ a=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/one/summary.json")
 b=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/res/summary.json")
 [ "$a" = "$b" ] || { echo "FAIL resume: summaries differ"; echo "$a"; echo "$b"; fail=$((fail + 1)); }
 
+# An avalanche pile reports its preparation, settled afresh or read from the cache (its report
+# is kept beside the cached pile); an explicit scene has none.
+check pile_fresh 0 'pile settled at t\* = .*without damping' -- "$bin" run --out "$work/pile1" --cache-dir "$work/cache" --threads 1 --set output.end_time=0.1
+check pile_cached 0 'settled pile from cache' -- "$bin" run --out "$work/pile2" --cache-dir "$work/cache" --threads 1 --set output.end_time=0.1
+a=$(grep -A6 '"preparation"' "$work/pile1/summary.json")
+b=$(grep -A6 '"preparation"' "$work/pile2/summary.json")
+{ grep -q '"ek_over_ep_undamped"' <<<"$a" && [ "$a" = "$b" ]; } ||
+  { echo "FAIL pile_report: fresh and cached preparation reports differ"; echo "$a"; echo "$b"; fail=$((fail + 1)); }
+grep -q '"preparation": null' "$work/two/summary.json" ||
+  { echo "FAIL explicit_report: an explicit scene reports a preparation"; fail=$((fail + 1)); }
+printf '[species.disc]\ndiameter = 0.5\n[[walls]]\npoints = [[-5.0, 0.0], [5.0, 0.0]]\n[[particles]]\nx = 0.0\ny = 0.25\n' >"$work/noside.toml"
+check wall_inside 1 'noside.toml: walls\[0\].inside: is required' -- "$bin" run "$work/noside.toml" --out "$work/noside" -q
+
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
