@@ -55,8 +55,8 @@ TEST(SceneFile, WrongTypeIsNamed) {
 }
 
 TEST(SceneFile, OutOfRangeNamesTheRange) {
-  expect_error(kGood + "[material]\nrestitution = 1.5\n", {"material.restitution", "1.5", "(0, 1]"});
-  expect_error(kGood + "[integration]\ndt_fraction = 0\n", {"integration.dt_fraction", "(0, 1]"});
+  expect_error(kGood + "[material]\nrestitution = 1.5\n", {"material.restitution", "1.5", "[0.01, 1]"});
+  expect_error(kGood + "[integration]\ndt_fraction = 0\n", {"integration.dt_fraction", "[0.0001, 1]"});
   expect_error(kGood + "[contact]\ndesign_max_overlap = -1\n", {"contact.design_max_overlap", "(0, 0.5]"});
 }
 
@@ -103,6 +103,27 @@ TEST(SceneFile, NothingToSimulate) {
 TEST(SceneFile, WallsNeedTwoDistinctPoints) {
   expect_error("[species.a]\ndiameter = 1.0\n[[walls]]\npoints = [[0.0, 0.0]]\n", {"walls[0].points", "at least two"});
   expect_error("[species.a]\ndiameter = 1.0\n[[walls]]\npoints = [[0.0, 0.0], [0.0, 0.0]]\n", {"walls[0].points[1]", "zero-length"});
+}
+
+// Values that used to be accepted and then hang or overflow (issue: bounded work).
+TEST(SceneFile, WorkIsBoundedForEveryAcceptedValue) {
+  expect_error(kGood, {"material.restitution", "[0.01, 1]"}, {io::parse_override("material.restitution=1e-8")});
+  expect_error(kGood, {"integration.dt_fraction", "[0.0001, 1]"}, {io::parse_override("integration.dt_fraction=5e-324")});
+  auto setup_error = [](const std::string& override_text, std::vector<std::string> needles) {
+    const SceneDef s = io::read_scene(kGood, "good.toml", {io::parse_override(override_text)});
+    try {
+      const SceneSetup setup = derive_setup(s, "good.toml");
+      check_runnable(s, setup, "good.toml");
+      FAIL() << override_text << " accepted";
+    } catch (const ConfigError& e) {
+      for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
+    }
+  };
+  // 0.4 of 500 large-disc areas in discs of 1/2000 D (plus 300 large): 8e8 discs, counted before any is made.
+  setup_error("species.small.diameter=0.0005", {"good.toml", "species", "800000300 discs", "at most 20000000"});
+  setup_error("output.timeseries_every=1e-300", {"output.timeseries_every", "shorter than one time step"});
+  setup_error("output.checkpoint_every=1e-9", {"output.checkpoint_every", "shorter than one time step"});
+  setup_error("output.dump_every=1e-9", {"output.dump_every", "shorter than one time step"});
 }
 
 TEST(SceneFile, WallsStateTheirInside) {

@@ -106,10 +106,16 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
   t.species_count = n;
   t.pair.resize(static_cast<size_t>(n * n));
   t.wall.resize(static_cast<size_t>(n));
-  const DashpotDesign linear_pp = dashpot_design(material.restitution, false);
-  const DashpotDesign linear_pw = dashpot_design(material.wall_restitution, false);
-  const DashpotDesign hertz_pp = dashpot_design(material.restitution, true);
-  const DashpotDesign hertz_pw = dashpot_design(material.wall_restitution, true);
+  // Only the chosen law's damping is designed (a bisection over simulated collisions); the
+  // other laws' coefficients stay zero and are never read.
+  auto design = [&](NormalModel law, double restitution) {
+    return contact.normal_model == law ? dashpot_design(restitution, law == NormalModel::hertz)
+                                       : DashpotDesign{};
+  };
+  const DashpotDesign linear_pp = design(NormalModel::linear_dashpot, material.restitution);
+  const DashpotDesign linear_pw = design(NormalModel::linear_dashpot, material.wall_restitution);
+  const DashpotDesign hertz_pp = design(NormalModel::hertz, material.restitution);
+  const DashpotDesign hertz_pw = design(NormalModel::hertz, material.wall_restitution);
   for (int a = 0; a < n; ++a) {
     const double ra = 0.5 * species[a].diameter;
     const double ma = sphere_mass(ra, material.density);

@@ -25,17 +25,21 @@ class Random {
 };
 
 constexpr double kDeg = kPi / 180.0;
+// The largest pile runout builds, and what a disc costs in memory (state, about three listed
+// pairs with their history, the cell grid; measured order of magnitude) for the message.
+constexpr double kMaxDiscs = 20'000'000;
+constexpr double kBytesPerDisc = 600;
 // The preparation damps a pile once E_k/E_p is below this many times the settle threshold
 // (it merely rings), or once it has had twice the free-fall time of its box to collapse.
 constexpr double kDampingOnset = 100.0;
 
 }  // namespace
 
-int disc_count(double area_share, int reference_large_count, double large_diameter,
-               double diameter) {
+double disc_count(double area_share, int reference_large_count, double large_diameter,
+                  double diameter) {
   const double ratio = large_diameter / diameter;
   const double n = area_share * reference_large_count * ratio * ratio;
-  return static_cast<int>(std::ceil(n * (1.0 - 1e-9)));  // 3200.0000000001 is 3200
+  return std::ceil(n * (1.0 - 1e-9));  // 3200.0000000001 is 3200
 }
 
 SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
@@ -69,9 +73,22 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
   if (scene.avalanche) {
     const auto& a = *scene.avalanche;
     s.counts.resize(scene.species.size());
+    double total = 0;
     for (size_t k = 0; k < scene.species.size(); ++k)
-      s.counts[k] = disc_count(scene.species[k].area_share, a.reference_large_count,
-                               s.large_diameter, scene.species[k].diameter);
+      total += disc_count(scene.species[k].area_share, a.reference_large_count, s.large_diameter,
+                          scene.species[k].diameter);
+    // Counted in floating point and capped before anything is allocated: a tiny diameter
+    // must be an error naming the count, not an int overflow or a bare bad_alloc.
+    if (total > kMaxDiscs) {
+      std::ostringstream msg;
+      msg << "the pile would hold " << std::llround(total) << " discs (about "
+          << std::llround(total * kBytesPerDisc / 1e9) << " GB); runout takes at most "
+          << static_cast<long long>(kMaxDiscs) << ": raise the smallest diameter or lower avalanche.reference_large_count";
+      throw ConfigError(source, "species", msg.str());
+    }
+    for (size_t k = 0; k < scene.species.size(); ++k)
+      s.counts[k] = static_cast<int>(disc_count(scene.species[k].area_share, a.reference_large_count,
+                                                s.large_diameter, scene.species[k].diameter));
     // The species counted for roles must be present: %A_p = 0 has no small discs.
     if (s.counts[s.roles.small] == 0) s.roles.small = s.roles.large;
     if (s.counts[s.roles.large] == 0) s.roles.large = s.roles.small;
@@ -116,6 +133,18 @@ void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::s
   if (total == 0)
     throw ConfigError(source, scene.avalanche ? "avalanche.reference_large_count" : "particles",
                       "the scene has no discs to simulate (add [[particles]] or an [avalanche])");
+  // A cadence shorter than one step would ask for more than one sample per step, for ever.
+  const double step = setup.dt / setup.unit_time;  // t*
+  const std::pair<const char*, double> cadences[] = {{"output.timeseries_every", scene.output.timeseries_every},
+                                                     {"output.checkpoint_every", scene.output.checkpoint_every},
+                                                     {"output.dump_every", scene.output.dump_every}};
+  for (const auto& [key, every] : cadences)
+    if (every > 0 && every < step) {
+      std::ostringstream msg;
+      msg << "value " << every << " t* is shorter than one time step of this scene (" << step
+          << " t*); use at least one step (0 switches checkpoints and dumps off)";
+      throw ConfigError(source, key, msg.str());
+    }
 }
 
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads) {
@@ -204,11 +233,11 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   World world(std::move(p), make_segments(setup.walls), setup.table,
               step_settings(scene, setup, threads));
 
-  // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4. The
-  // pile is damped (PFC local damping, preparation.damping) while it grows and settles; once
-  // E_k/E_p has stayed below the threshold for settle_hold, the damping is switched off and the
-  // pile must stay below it for another settle_hold under the undamped law, or damping resumes.
-  // So the released pile is at rest under the very law the flow uses (SPEC §5).
+  // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4. Once
+  // the pile has collapsed it is damped (PFC local damping, preparation.damping); once E_k/E_p
+  // has stayed below the threshold for settle_hold, the damping is switched off and the pile
+  // must stay below it for another settle_hold under the undamped law, or damping resumes. So
+  // the released pile is at rest under the very law the flow uses (SPEC §5).
   const double unit_time = setup.unit_time;
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(unit_time / setup.dt));
   const std::int64_t check_every = std::max<std::int64_t>(1, steps_per_unit / 10);

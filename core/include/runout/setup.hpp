@@ -34,8 +34,8 @@ void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::s
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads);
 
 // SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1).
-int disc_count(double area_share, int reference_large_count, double large_diameter,
-               double diameter);
+double disc_count(double area_share, int reference_large_count, double large_diameter,
+                  double diameter);
 
 // A world holding the scene's explicit particles and walls.
 World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int threads);
