@@ -93,7 +93,7 @@ int run_command(const RunOptions& o) {
 
   const std::string checkpoint_path = o.out_dir + "/checkpoint.bin";
   const std::uint64_t key = io::physics_key(scene);
-  PreparedWorld prepared{build_explicit_world(scene, setup, threads)};
+  PreparedWorld prepared{build_explicit_world(scene, setup, threads), false, 0.0, std::nullopt};
   std::optional<RunState> resumed;
   if (o.resume && io::file_exists(checkpoint_path)) {
     resumed = decode_run_state(decode_checkpoint(io::read_file(checkpoint_path), key, prepared.world,

@@ -25,7 +25,7 @@ check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
 
 # Bad input: exit 1, the message names file, key and allowed range; nothing claims success.
 printf '[species.a]\ndiameter = 1.0\narea_share = 1.0\n[avalanche]\n[material]\nrestitution = 2.0\n' >"$work/bad.toml"
-check bad_range 1 'bad.toml: material.restitution: value 2 is out of the allowed range \(0, 1\]' -- \
+check bad_range 1 'bad.toml: material.restitution: value 2 is out of the allowed range \[0.01, 1\]' -- \
   "$bin" run "$work/bad.toml" --out "$work/bad" -q
 [ -e "$work/bad/summary.json" ] && { echo "FAIL bad_range wrote a summary"; fail=$((fail + 1)); }
 check bad_set 1 'contact.normal_model: "hooke" is not one of' -- \

@@ -120,7 +120,7 @@ TEST(SceneFile, WorkIsBoundedForEveryAcceptedValue) {
     }
   };
   // 0.4 of 500 large-disc areas in discs of 1/2000 D (plus 300 large): 8e8 discs, counted before any is made.
-  setup_error("species.small.diameter=0.0005", {"good.toml", "species", "800000300 discs", "at most 20000000"});
+  setup_error("species.small.diameter=0.0005", {"good.toml", "species", "800000300 discs", "at most 10000000"});
   setup_error("output.timeseries_every=1e-300", {"output.timeseries_every", "shorter than one time step"});
   setup_error("output.checkpoint_every=1e-9", {"output.checkpoint_every", "shorter than one time step"});
   setup_error("output.dump_every=1e-9", {"output.dump_every", "shorter than one time step"});
