@@ -180,7 +180,7 @@ int bench_command(const BenchOptions& o) {
                                    o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, false);
   World& world = prepared.world;
   world.set_threads(o.threads);
-  const long long warmup = o.warmup_steps > 0 ? o.warmup_steps
+  const long long warmup = o.warmup_steps >= 0 ? o.warmup_steps
                                               : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
   for (long long s = 0; s < warmup; ++s) world.step();
   if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);

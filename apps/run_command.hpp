@@ -27,7 +27,7 @@ struct RunOptions {
 struct BenchOptions {
   std::string scene_path;  // empty: the embedded bench scene (D/d = 4, %A_p = 40)
   long long steps = 20000;
-  long long warmup_steps = 0;  // 0: run to t* = 5 after release first
+  long long warmup_steps = -1;  // -1: run to t* = 5 after release first; 0: none
   int threads = 1;
   std::string cache_dir;
   std::vector<std::string> overrides;

@@ -88,6 +88,10 @@ grep -q '"preparation": null' "$work/two/summary.json" ||
 printf '[species.disc]\ndiameter = 0.5\n[[walls]]\npoints = [[-5.0, 0.0], [5.0, 0.0]]\n[[particles]]\nx = 0.0\ny = 0.25\n' >"$work/noside.toml"
 check wall_inside 1 'noside.toml: walls\[0\].inside: is required' -- "$bin" run "$work/noside.toml" --out "$work/noside" -q
 
+# bench: --warmup-steps 0 means no warm-up (it used to mean the default, to t* = 5).
+check bench_no_warmup 0 't_star_start: 0.000' -- "$bin" bench --scene "$work/two.toml" --steps 10 --warmup-steps 0
+check bench_warmup 0 't_star_start: 5.0' -- "$bin" bench --scene "$work/two.toml" --steps 10
+
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
