@@ -51,7 +51,7 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
                       const std::string& cache_dir, bool use_cache, bool quiet) {
   const auto t0 = Clock::now();
   World world = build_explicit_world(scene, setup, threads);
-  if (!scene.avalanche) return {std::move(world), false, 0.0};
+  if (!scene.avalanche) return {std::move(world), false, 0.0, std::nullopt};
 
   const std::uint64_t key = pile_key(scene);
   const std::string path = cache_dir + "/pile-" + hex(key) + ".ckpt";

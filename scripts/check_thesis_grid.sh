@@ -55,7 +55,7 @@ t1=$(date +%s)
 
 # One row per case, in grid order, from each run's summary.json (python3's standard library).
 status=0
-/usr/bin/env python3 - "$out" "$prepare_only" "$((t1 - t0))" "$jobs" "$*" <<'EOF' || status=$?
+/usr/bin/env python3 - "$out" "$prepare_only" "$((t1 - t0))" "$jobs" <<'EOF' || status=$?
 import json, os, sys
 out, prepare_only, total, jobs = sys.argv[1], sys.argv[2] == "1", int(sys.argv[3]), sys.argv[4]
 rows = [l.rstrip("\n").split("\t") for l in open(os.path.join(out, "cases.tsv")) if l.strip()]

@@ -115,13 +115,7 @@ TEST(Extremes, FrictionlessPileKeepsNoTangentialHistory) {
 TEST(Extremes, SizeRatioTwentyPileSettlesAndFlows) {
   SceneDef s;
   s.species = {{"large", 1.0, 0.1, 0.5}, {"small", 0.05, 0.1, 0.5}};
-  AvalancheDef a;
-  a.incline_length = 5.0;
-  a.pile_width = 3.0;
-  a.floor_length = 10.0;
-  a.wall_height = 10.0;
-  a.reference_large_count = 4;  // 2 large and 800 small discs
-  s.avalanche = a;
+  s.avalanche = testing::short_avalanche(5.0, 3.0, 10.0, 10.0, 4);  // 2 large and 800 small discs
   s.preparation.settle_ek_threshold = 1e-5;
   s.preparation.settle_max_time = 60.0;
   s.output.end_time = 3.0;

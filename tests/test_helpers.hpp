@@ -43,17 +43,23 @@ void step_through_one_contact(World& w, const InContact& in_contact) {
   }
 }
 
+// The thesis geometry shrunk for a test (lengths in large diameters, SPEC §5).
+inline AvalancheDef short_avalanche(double incline_length, double pile_width, double floor_length,
+                                    double wall_height, int reference_large_count) {
+  AvalancheDef a;
+  a.incline_length = incline_length;
+  a.pile_width = pile_width;
+  a.floor_length = floor_length;
+  a.wall_height = wall_height;
+  a.reference_large_count = reference_large_count;
+  return a;
+}
+
 // A small thesis-like pile (30 large-disc areas, D/d = 2) that settles in well under a second.
 inline SceneDef small_pile() {
   SceneDef s;
   s.species = {{"large", 1.0, 0.1, 0.6}, {"small", 0.5, 0.1, 0.4}};
-  AvalancheDef a;
-  a.incline_length = 6.0;
-  a.pile_width = 4.0;
-  a.floor_length = 20.0;
-  a.wall_height = 15.0;
-  a.reference_large_count = 30;
-  s.avalanche = a;
+  s.avalanche = short_avalanche(6.0, 4.0, 20.0, 15.0, 30);
   s.preparation.settle_ek_threshold = 1e-5;
   return s;
 }

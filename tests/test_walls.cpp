@@ -202,13 +202,7 @@ TEST(Walls, GrowingSizeRatioEightPileBehindTheBackWallLosesNoDisc) {
   // lost through it, SPEC §5 preparation).
   SceneDef s;
   s.species = {{"large", 1.0, 0.1, 0.75}, {"small", 0.12, 0.1, 0.25}};
-  AvalancheDef a;
-  a.incline_length = 4.0;
-  a.pile_width = 4.0;
-  a.floor_length = 10.0;
-  a.wall_height = 30.0;
-  a.reference_large_count = 24;  // 18 large and 417 small discs
-  s.avalanche = a;
+  s.avalanche = testing::short_avalanche(4.0, 4.0, 10.0, 30.0, 24);  // 18 large, 417 small discs
   s.preparation.settle_ek_threshold = 1e-4;  // growth is the test, not the last ringing
   const SceneSetup setup = derive_setup(s);
   ASSERT_EQ(setup.counts[0] + setup.counts[1], 18 + 417);

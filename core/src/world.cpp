@@ -310,8 +310,8 @@ PassSums World::wall_forces() {
     c.fx[q] = -fn_on * normal.x() - ft_on * normal.y();
     c.fy[q] = -fn_on * normal.y() + ft_on * normal.x();
     if constexpr (kFriction) c.ft[q] = ft_on;
-    const double pass_through = p.radius[i] + (s.one_sided() ? behind_depth(p.radius[i]) : 0.0);
-    worst = std::max(worst, touching && overlap_rate > settings_.impact_rate ? overlap / pass_through : 0.0);
+    worst = std::max(worst, touching && overlap_rate > settings_.impact_rate
+                                ? overlap / pass_through_overlap(s, p.radius[i]) : 0.0);
   }
   return {worst, loss_normal, loss_friction};
 }

@@ -83,6 +83,11 @@ struct WallTouch {
 // How far behind a one-sided wall's line the centre of a disc of this radius is still pushed
 // back: one diameter (an overlap of 3 r, far past anything the overlap guard lets an impact do).
 inline double behind_depth(double radius) { return 2.0 * radius; }
+// The overlap at which a disc would be through the wall: its centre behind a one-sided face's
+// reach, or on a two-sided plate's far side (the overlap guard's scale, world.hpp).
+inline double pass_through_overlap(const Segment& s, double radius) {
+  return radius + (s.one_sided() ? behind_depth(radius) : 0.0);
+}
 
 inline WallTouch wall_touch(const Segment& s, const Eigen::Vector2d& p, double radius) {
   auto end_point = [&](const Eigen::Vector2d& end, bool cap) {

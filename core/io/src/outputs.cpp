@@ -11,6 +11,15 @@ namespace {
 
 // JSON has no NaN: a quantity that is undefined for this run (no small discs, not at rest) is
 // written as null.
+// The preparation's report (SPEC §5), in summary.json and beside a cached pile.
+nlohmann::json settle_report_object(const SettleReport& s) {
+  return {{"t_star_grown", s.t_star_grown},
+          {"t_star_settled", s.t_star_settled},
+          {"ek_over_ep_undamped", s.ek_over_ep_undamped},
+          {"damped_rounds", s.damped_rounds},
+          {"peak_impact_overlap", s.peak_impact_overlap}};
+}
+
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 }  // namespace
@@ -68,7 +77,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["wall_seconds"] = r.wall_seconds;
   j["preparation_seconds"] = c.preparation_seconds;
   j["pile_from_cache"] = c.pile_from_cache;
-  j["preparation"] = c.settle ? nlohmann::json::parse(settle_report_json(*c.settle)) : nlohmann::json();
+  j["preparation"] = c.settle ? settle_report_object(*c.settle) : nlohmann::json();
   j["particle_steps_per_second"] = r.particle_steps_per_second;
   j["threads"] = c.threads;
   j["seed"] = c.seed;
@@ -80,14 +89,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   return j.dump(2) + "\n";
 }
 
-std::string settle_report_json(const SettleReport& s) {
-  const nlohmann::json j = {{"t_star_grown", s.t_star_grown},
-                            {"t_star_settled", s.t_star_settled},
-                            {"ek_over_ep_undamped", s.ek_over_ep_undamped},
-                            {"damped_rounds", s.damped_rounds},
-                            {"peak_impact_overlap", s.peak_impact_overlap}};
-  return j.dump(2) + "\n";
-}
+std::string settle_report_json(const SettleReport& s) { return settle_report_object(s).dump(2) + "\n"; }
 
 std::optional<SettleReport> read_settle_report(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
