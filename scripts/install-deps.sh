@@ -6,6 +6,7 @@ packages=(
   build-essential cmake python3
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
+  clang libclang-rt-14-dev libomp-dev
   pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
 )

@@ -2,6 +2,8 @@
 // truncated or foreign file is refused with a clear error, never half-read.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/setup.hpp"
@@ -65,6 +67,57 @@ TEST(Checkpoint, DamageIsDetected) {
   std::string other_version = good;
   other_version[8] = 99;  // version field follows the 8-byte magic
   EXPECT_THROW(decode_checkpoint(other_version, 7, target, "v99.ckpt"), IoError);
+}
+
+// A well-sealed file (right checksum) whose values would crash or poison a run is refused by
+// name: the checksum says the bytes are the ones written, not that they are sane.
+TEST(Checkpoint, InsaneValuesAreRefused) {
+  const SceneDef s = testing::small_pile();
+  const SceneSetup setup = derive_setup(s);
+  const World good = build_settled_pile(s, setup, 1);
+  struct Case { const char* what; void (*spoil)(Particles&); const char* message; };
+  const Case cases[] = {
+      {"NaN x", [](Particles& p) { p.x[3] = std::nan(""); }, "non-finite position"},
+      {"infinite vy", [](Particles& p) { p.vy[0] = HUGE_VAL; }, "non-finite position"},
+      {"zero mass", [](Particles& p) { p.mass[1] = 0; }, "mass of disc 1"},
+      {"negative radius", [](Particles& p) { p.radius[2] = -1e-3; }, "radius of disc 2"},
+      {"species out of range", [](Particles& p) { p.species[0] = 7; }, "species of disc 0"},
+  };
+  for (const Case& c : cases) {
+    Particles p = good.particles();
+    c.spoil(p);
+    const World bad(p, good.segments(), good.table(), good.settings());
+    const std::string bytes = encode_checkpoint(bad, 7, "");
+    World target = build_explicit_world(s, setup, 1);
+    try {
+      decode_checkpoint(bytes, 7, target, "bad.ckpt");
+      ADD_FAILURE() << c.what << " was accepted";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.ckpt"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << c.what << ": " << e.what();
+    }
+  }
+}
+
+// A NaN that gets past every check still stops at the neighbour search with an error, not a
+// crash or an endless loop in the cell grid.
+TEST(Checkpoint, NeighbourSearchRefusesNonFinitePositions) {
+  const SceneDef s = testing::small_pile();
+  const SceneSetup setup = derive_setup(s);
+  const World good = build_settled_pile(s, setup, 1);
+  for (double v : {std::nan(""), -HUGE_VAL}) {
+    Particles p = good.particles();
+    p.x[5] = v;
+    World w(p, good.segments(), good.table(), good.settings());
+    EXPECT_THROW(w.step(), NumericalError) << v;
+  }
+  // Far but finite: the grid is counted in floating point, so this steps (the run's escape
+  // check is what reports it) instead of overflowing the cell count.
+  Particles p = good.particles();
+  p.x[5] = 1e308;
+  World far(p, good.segments(), good.table(), good.settings());
+  EXPECT_NO_THROW(far.step());
+  EXPECT_THROW(far.check_escape(0.0), NumericalError);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "runout/checkpoint.hpp"
 
+#include <cmath>
+
 #include "runout/errors.hpp"
 
 namespace runout {
@@ -14,7 +16,59 @@ std::uint64_t checksum(std::string_view bytes) {
   return h;
 }
 
+// Every value a World relies on, checked before it is built: a checksum only says the bytes
+// are the ones written, not that they were sane (a NaN coordinate would reach the cell grid).
+void check_state(const Particles& p, int species_count, const std::string& name) {
+  auto bad = [&](const std::string& what, std::size_t k) {
+    throw IoError(name + ": checkpoint is corrupt (" + what + " of disc " + std::to_string(k) + ")");
+  };
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    for (double v : {p.x[k], p.y[k], p.vx[k], p.vy[k], p.omega[k], p.angle[k], p.ax[k], p.ay[k],
+                     p.alpha[k]})
+      if (!std::isfinite(v)) bad("a non-finite position, velocity or acceleration", k);
+    if (!(p.radius[k] > 0) || !std::isfinite(p.radius[k])) bad("radius", k);
+    if (!(p.mass[k] > 0) || !std::isfinite(p.mass[k]) || !std::isfinite(1.0 / p.mass[k])) bad("mass", k);
+    if (!(p.inv_inertia[k] > 0) || !std::isfinite(p.inv_inertia[k])) bad("moment of inertia", k);
+    if (p.species[k] < 0 || p.species[k] >= species_count) bad("species", k);
+  }
+}
+
+// A contact list is rows of strictly increasing keys, one row per disc; pair keys are discs
+// after the row's own, wall keys are segments of the scene.
+template <class Contacts>
+void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int32_t>& key,
+                const Contacts& c, std::size_t n, std::int64_t key_end, bool pair_rows,
+                const std::string& name) {
+  auto bad = [&] { throw IoError(name + ": checkpoint is corrupt (contact lists)"); };
+  if (row.size() != n + 1 || row[0] != 0 || c.overlap_max.size() != key.size() ||
+      (!c.tangential_spring.empty() && c.tangential_spring.size() != key.size()))
+    bad();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (row[k + 1] < row[k]) bad();
+    if (static_cast<std::size_t>(row[k + 1]) > key.size()) bad();
+    const std::int64_t first = pair_rows ? static_cast<std::int64_t>(k) + 1 : 0;
+    for (std::int32_t q = row[k]; q < row[k + 1]; ++q)
+      if (key[q] < first || key[q] >= key_end || (q > row[k] && key[q] <= key[q - 1])) bad();
+  }
+  if (static_cast<std::size_t>(row[n]) != key.size()) bad();
+  for (double v : c.overlap_max) if (!std::isfinite(v) || v < 0) bad();
+  for (double v : c.tangential_spring) if (!std::isfinite(v)) bad();
+}
+
 }  // namespace
+
+std::string seal_checkpoint(std::string_view payload) {
+  std::string out(kMagic, sizeof(kMagic));
+  ByteWriter head;
+  head.put(kCheckpointVersion);
+  head.put<std::uint64_t>(payload.size());
+  out += head.bytes();
+  out += payload;
+  ByteWriter tail;
+  tail.put(checksum(payload));
+  out += tail.bytes();
+  return out;
+}
 
 void ByteReader::fail() { throw IoError(name_ + ": checkpoint is truncated or corrupt"); }
 
@@ -49,17 +103,7 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   w.put_vector(walls_built ? wc.overlap_max : std::vector<double>{});
   w.put_vector(walls_built ? wc.tangential_spring : std::vector<double>{});
   w.put_string(run_state);
-
-  std::string out(kMagic, sizeof(kMagic));
-  ByteWriter head;
-  head.put(kCheckpointVersion);
-  head.put<std::uint64_t>(w.bytes().size());
-  out += head.bytes();
-  out += w.bytes();
-  ByteWriter tail;
-  tail.put(checksum(w.bytes()));
-  out += tail.bytes();
-  return out;
+  return seal_checkpoint(w.bytes());
 }
 
 std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
@@ -89,6 +133,9 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   Dissipation lost;
   lost.normal = r.get<double>();
   lost.friction = r.get<double>();
+  if (!std::isfinite(time) || time < 0 || steps < 0 || !std::isfinite(lost.normal) ||
+      !std::isfinite(lost.friction))
+    throw IoError(name + ": checkpoint is corrupt (clock or energy ledger)");
   Particles p;
   p.x = r.get_vector<double>(); p.y = r.get_vector<double>();
   p.vx = r.get_vector<double>(); p.vy = r.get_vector<double>();
@@ -102,10 +149,9 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
                   &p.mass, &p.inv_inertia})
     if (v->size() != n) throw IoError(name + ": checkpoint is corrupt (array sizes differ)");
   if (p.species.size() != n || p.id.size() != n) throw IoError(name + ": checkpoint is corrupt");
+  check_state(p, world.table().species_count, name);
   p.inv_mass.resize(n);
   for (std::size_t k = 0; k < n; ++k) p.inv_mass[k] = 1.0 / p.mass[k];
-  for (auto s : p.species)
-    if (s < 0 || s >= world.table().species_count) throw IoError(name + ": checkpoint is corrupt (species)");
 
   const auto active = r.get_vector<std::uint8_t>();
   if (active.size() != world.segments().size())
@@ -123,15 +169,10 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   walls.tangential_spring = r.get_vector<double>();
   std::string run_state = r.get_string();
   if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
-  if (pairs.row_start.size() != n + 1 || walls.row_start.size() != n + 1 ||
-      pairs.j.size() != pairs.overlap_max.size() ||
-      // Springs are absent when the world that wrote it had no friction (World::frictional).
-      (!pairs.tangential_spring.empty() && pairs.j.size() != pairs.tangential_spring.size()) ||
-      walls.segment.size() != walls.overlap_max.size() ||
-      (!walls.tangential_spring.empty() && walls.segment.size() != walls.tangential_spring.size()) ||
-      static_cast<std::size_t>(pairs.row_start[n]) != pairs.j.size() ||
-      static_cast<std::size_t>(walls.row_start[n]) != walls.segment.size())
-    throw IoError(name + ": checkpoint is corrupt (contact lists)");
+  // Springs are absent when the world that wrote it had no friction (World::frictional).
+  check_rows(pairs.row_start, pairs.j, pairs, n, static_cast<std::int64_t>(n), true, name);
+  check_rows(walls.row_start, walls.segment, walls, n,
+             static_cast<std::int64_t>(world.segments().size()), false, name);
 
   World restored(std::move(p), world.segments(), world.table(), world.settings());
   for (std::size_t s = 0; s < active.size(); ++s)

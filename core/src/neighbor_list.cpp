@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "runout/errors.hpp"
+
 namespace runout {
 
 namespace {
@@ -60,18 +62,23 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // ---- cell grid ----
     double xmin = p.x[0], xmax = p.x[0], ymin = p.y[0], ymax = p.y[0];
     double rmin = p.radius[0], rmax = p.radius[0];
-    for (std::int32_t k = 1; k < n; ++k) {
+    bool finite = true;  // std::min and std::max pass over a NaN, so it is looked for
+    for (std::int32_t k = 0; k < n; ++k) {
+      finite = finite && std::isfinite(p.x[k]) && std::isfinite(p.y[k]) && std::isfinite(p.radius[k]);
       xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]);
       ymin = std::min(ymin, p.y[k]); ymax = std::max(ymax, p.y[k]);
       rmin = std::min(rmin, p.radius[k]); rmax = std::max(rmax, p.radius[k]);
     }
     // Cells sized for the small discs; large discs search a wider stencil, so bidisperse piles
     // with D/d = 8 do not put hundreds of small discs in one cell.
+    // The world checks its state after every step; this is the last line against a state that
+    // would make the grid meaningless (a NaN or a coordinate beyond ~1e300 m loops or overflows).
+    if (!finite || !std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin) || !(rmin > 0))
+      throw NumericalError("neighbour search: disc positions or radii are not finite");
     double cell = std::max({2 * rmin + skin, (2 * rmax + skin) / 3.0, 1e-12});
-    auto cells_along = [&](double lo, double hi) {
-      return static_cast<std::int64_t>(std::floor((hi - lo) / cell)) + 1;
-    };
-    const std::int64_t max_cells = 4 * std::int64_t(n) + 1024;  // a stray disc must not blow memory
+    // Counted in floating point: a stray disc far away must neither overflow nor blow memory.
+    auto cells_along = [&](double lo, double hi) { return std::floor((hi - lo) / cell) + 1; };
+    const double max_cells = 4.0 * n + 1024;
     while (cells_along(xmin, xmax) * cells_along(ymin, ymax) > max_cells) cell *= 1.5;
     const auto ncx = static_cast<std::int32_t>(cells_along(xmin, xmax));
     const auto ncy = static_cast<std::int32_t>(cells_along(ymin, ymax));
@@ -102,7 +109,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       auto& found = thread_found_[t];
       for (std::int32_t i = lo; i < hi; ++i) {
         const double reach = p.radius[i] + rmax + skin;
-        const std::int32_t span = static_cast<std::int32_t>(std::ceil(reach * inv_cell));
+        const std::int32_t span = static_cast<std::int32_t>(
+            std::min(std::ceil(reach * inv_cell), static_cast<double>(std::max(ncx, ncy))));
         const std::int32_t ci = disc_cell_[i] % ncx, cj = disc_cell_[i] / ncx;
         found.clear();
         for (std::int32_t gy = std::max(0, cj - span); gy <= std::min(ncy - 1, cj + span); ++gy)

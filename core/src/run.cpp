@@ -60,7 +60,18 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
       if (v->size() != p.x.size()) throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
     if (p.species.size() != p.x.size() || p.id.size() != p.x.size())
       throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
+    for (const auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass})
+      for (double x : *v)
+        if (!std::isfinite(x)) throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
   }
+  // The samples may hold undefined measurements (NaN, written as empty); the run's own
+  // bookkeeping may not.
+  for (double v : {s.ep0, s.energy_reference_y, s.com_release.x(), s.com_release.y(),
+                   s.top_release.top_x, s.top_release.top_y, s.below_since, s.peak_ek,
+                   s.t_star_peak_ek, s.next_sample, s.wall_seconds, s.energy_total0, s.committed0,
+                   s.dissipated_normal0, s.dissipated_friction0, s.t_star_rest})
+    if (!std::isfinite(v)) throw IoError(name + ": checkpoint is corrupt (run state)");
+  if (s.ep0 < 0) throw IoError(name + ": checkpoint is corrupt (run state)");
   return s;
 }
 

@@ -19,6 +19,10 @@ inline constexpr std::uint32_t kCheckpointVersion = 3;
 std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
                               std::string_view run_state);
 
+// Wraps a payload in the magic, version, size and checksum (what encode_checkpoint does last);
+// tests and fuzz targets use it to build well-sealed files with chosen contents.
+std::string seal_checkpoint(std::string_view payload);
+
 // Restores `world` (built from the same scene) and returns the run-state blob. Throws IoError
 // for a corrupt, truncated, foreign or other-version file and for a scene-key mismatch.
 std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
@@ -32,7 +36,7 @@ class ByteWriter {
   }
   template <class T> void put_vector(const std::vector<T>& v) {
     put<std::uint64_t>(v.size());
-    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   void put_string(std::string_view s) {
     put<std::uint64_t>(s.size());
@@ -58,7 +62,7 @@ class ByteReader {
     const auto n = get<std::uint64_t>();
     if (n > (in_.size() - at_) / sizeof(T)) fail();
     std::vector<T> v(n);
-    std::memcpy(v.data(), in_.data() + at_, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), in_.data() + at_, n * sizeof(T));  // data() may be null when empty
     at_ += n * sizeof(T);
     return v;
   }
