@@ -2,9 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
+#include <nlohmann/json.hpp>
+
+#include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
+#include "runout/io/outputs.hpp"
 #include "runout/run.hpp"
+#include "runout/setup.hpp"
 #include "test_helpers.hpp"
 
 namespace runout {
@@ -129,6 +135,113 @@ TEST(Run, ObserversFireOnTheNearestStep) {
   ASSERT_EQ(at.times.size(), 2u);
   EXPECT_NEAR(at.times[0], 0.25, half_step + 1e-12);
   EXPECT_NEAR(at.times[1], 2.5, half_step + 1e-12);
+}
+
+// Exact resume (SPEC §5, docs/reliability.md): a run killed right after any checkpoint and
+// resumed gives every summary field, every time-series row and the final state of the run
+// that never stopped. Cadences put checkpoints on sample times (0.5), on rest-test steps (a
+// multiple of the rest test's step cadence) and between both (0.37).
+class CheckpointTaker : public Observer {
+ public:
+  explicit CheckpointTaker(const AvalancheRun*& run) : run_(run) {}
+  void observe(const World& world, double t_star) override {
+    if (t_star > 0 && taken.size() < 3)
+      taken.push_back(encode_checkpoint(world, 1, encode_run_state(run_->state())));
+  }
+  std::vector<std::string> taken;
+
+ private:
+  const AvalancheRun*& run_;
+};
+
+nlohmann::json summary_without_wall_times(const RunResult& r, const SceneSetup& setup) {
+  io::SummaryContext ctx;
+  ctx.unit_length = setup.unit_length;
+  ctx.unit_time = setup.unit_time;
+  nlohmann::json j = nlohmann::json::parse(io::summary_json(r, ctx));
+  for (const char* k : {"wall_seconds", "particle_steps_per_second", "profile_seconds"}) j.erase(k);
+  return j;
+}
+
+TEST(Run, ResumeFromAnyCheckpointIsTheUninterruptedRun) {
+  SceneDef s = testing::small_pile();
+  s.rest.ek_threshold = 1e-3;
+  s.rest.hold = 1.0;
+  s.rest.max_time = 30.0;
+  s.output.timeseries_every = 0.5;
+  const SceneSetup setup = derive_setup(s);
+  World released = build_settled_pile(s, setup, 1);
+  release(released, setup);
+  const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(setup.unit_time / setup.dt));
+  const double rest_test_every = 7.0 * std::max<std::int64_t>(1, steps_per_unit / 20) * setup.dt / setup.unit_time;
+
+  for (double every : {0.5, rest_test_every, 0.37}) {
+    World w = released;
+    AvalancheRun straight(w, s, setup);
+    const AvalancheRun* ptr = &straight;
+    CheckpointTaker taker(ptr);
+    straight.add_observer(taker, {every, every, {}});
+    Recorder snapshots;  // an observer at fixed times: none is repeated or lost by a resume
+    straight.add_observer(snapshots, {0.0, 0.0, {0.0, 1.0, 2.2, 5.0}});
+    const RunResult whole = straight.run();
+    ASSERT_TRUE(whole.at_rest);
+    ASSERT_EQ(taker.taken.size(), 3u);
+    for (const std::string& bytes : taker.taken) {
+      // Once with another thread count: the ledger's sums too are the same bits.
+      World again = build_explicit_world(s, setup, &bytes == &taker.taken[0] ? 2 : 1);
+      const RunState state = decode_run_state(decode_checkpoint(bytes, 1, again, "ckpt"), "ckpt");
+      const double t_resume = again.time() / setup.unit_time;
+      AvalancheRun resumed(again, s, setup, state);
+      Recorder later;
+      resumed.add_observer(later, {0.0, 0.0, {0.0, 1.0, 2.2, 5.0}});
+      const RunResult r = resumed.run();
+      SCOPED_TRACE("cadence " + std::to_string(every) + ", resumed at t* = " + std::to_string(t_resume));
+      EXPECT_EQ(summary_without_wall_times(r, setup), summary_without_wall_times(whole, setup));
+      const auto& a = resumed.state().series;
+      const auto& b = straight.state().series;
+      ASSERT_EQ(a.size(), b.size());
+      EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(TimeseriesRow)), 0);
+      EXPECT_EQ(again.particles().x, w.particles().x);
+      EXPECT_EQ(again.particles().omega, w.particles().omega);
+      std::vector<double> missed;  // what the resumed run drew is what the whole run drew after t_resume
+      for (double t : snapshots.times) if (t > t_resume + 1e-9) missed.push_back(t);
+      EXPECT_EQ(later.times, missed);
+    }
+  }
+}
+
+// A run resumed from its final checkpoint (after rest, or after output.end_time) ends where it
+// was, and adds no row; resumed with a later end time it is the run that never stopped there.
+TEST(Run, ResumingAnEndedRunAddsNothing) {
+  SceneDef s = pit_and_roller();
+  s.output.end_time = 3.0;
+  const SceneSetup setup = derive_setup(s);
+  World w = build_explicit_world(s, setup, 1);
+  AvalancheRun first(w, s, setup);
+  const RunResult r1 = first.run();
+  ASSERT_TRUE(r1.reached_end_time);
+  EXPECT_NEAR(r1.t_star_end, 3.0, 0.5 * setup.dt / setup.unit_time + 1e-12);  // to the step
+  const std::string bytes = encode_checkpoint(w, 1, encode_run_state(first.state()));
+
+  World again = build_explicit_world(s, setup, 1);
+  AvalancheRun same(again, s, setup, decode_run_state(decode_checkpoint(bytes, 1, again, "c"), "c"));
+  const RunResult r2 = same.run();
+  EXPECT_EQ(summary_without_wall_times(r2, setup), summary_without_wall_times(r1, setup));
+  EXPECT_EQ(same.state().series.size(), first.state().series.size());
+
+  SceneDef longer = s;
+  longer.output.end_time = 6.0;
+  World straight_world = build_explicit_world(s, setup, 1);
+  AvalancheRun straight(straight_world, longer, setup);
+  const RunResult whole = straight.run();
+  World cont = build_explicit_world(s, setup, 1);
+  AvalancheRun continued(cont, longer, setup, decode_run_state(decode_checkpoint(bytes, 1, cont, "c"), "c"));
+  const RunResult r3 = continued.run();
+  EXPECT_EQ(summary_without_wall_times(r3, setup), summary_without_wall_times(whole, setup));
+  const auto& a = continued.state().series;
+  const auto& b = straight.state().series;
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(TimeseriesRow)), 0);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ std::string encode_run_state(const RunState& s) {
   w.put(s.worst_residual);
   w.put(s.max_overlap);
   w.put_vector(s.series);
+  w.put(static_cast<std::uint8_t>(s.series_ends_with_end_row));
   w.put(static_cast<std::uint8_t>(s.rest_frozen));
   if (s.rest_frozen) {
     const Particles& p = s.rest_particles;
@@ -48,6 +49,9 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   s.worst_residual = r.get<double>();
   s.max_overlap = r.get<double>();
   s.series = r.get_vector<TimeseriesRow>();
+  s.series_ends_with_end_row = r.get<std::uint8_t>() != 0;
+  if (s.series_ends_with_end_row && s.series.empty())
+    throw IoError(name + ": checkpoint is corrupt (time series)");
   s.rest_frozen = r.get<std::uint8_t>() != 0;
   if (s.rest_frozen) {
     Particles& p = s.rest_particles;
@@ -131,7 +135,7 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
 
 AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
                            RunState state)
-    : world_(world), scene_(scene), setup_(setup), state_(std::move(state)) {
+    : world_(world), scene_(scene), setup_(setup), state_(std::move(state)), resumed_(true) {
   // The losses before the checkpoint were counted only if the ledger was on from release.
   if (scene.output.series.energy && !state_.ledger)
     throw ConfigError("checkpoint", "output.series",
@@ -144,11 +148,15 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
 void AvalancheRun::add_observer(Observer& observer, Schedule schedule) {
   std::sort(schedule.at.begin(), schedule.at.end());
   Scheduled s{&observer, schedule, schedule.first, 0};
-  // Skip what already happened (a resumed run).
-  const double now = t_star() - 0.5 * setup_.dt / setup_.unit_time;
-  if (s.schedule.every > 0)
-    while (s.next_every < now) s.next_every += s.schedule.every;
-  while (s.next_at < s.schedule.at.size() && s.schedule.at[s.next_at] < now) ++s.next_at;
+  // Skip what already happened: in a resumed run, everything due up to and including the
+  // checkpoint's step (fire_observers' own test), so nothing is drawn or written twice.
+  const double half_step = 0.5 * setup_.dt / setup_.unit_time;
+  if (resumed_) {
+    const double now = t_star();
+    if (s.schedule.every > 0)
+      while (now >= s.next_every - half_step) s.next_every += s.schedule.every;
+    while (s.next_at < s.schedule.at.size() && now >= s.schedule.at[s.next_at] - half_step) ++s.next_at;
+  }
   observers_.push_back(s);
 }
 
@@ -233,10 +241,6 @@ bool AvalancheRun::finished() {
     state_.below_since = -1;
     at_rest_ = false;
   }
-  if (scene_.output.end_time > 0 && now >= scene_.output.end_time - half_step) {
-    reached_end_time_ = true;
-    return true;
-  }
   return now >= std::max(scene_.rest.max_time, min_end_time_);
 }
 
@@ -263,22 +267,42 @@ RunResult AvalancheRun::run() {
   auto record = [&] {
     if (t_star() >= state_.next_sample - 0.5 * setup_.dt / setup_.unit_time) {
       state_.series.push_back(sample());
+      state_.series_ends_with_end_row = false;
       state_.worst_residual = std::max(state_.worst_residual, std::abs(state_.series.back().residual_over_ep0));
       state_.max_overlap = std::max(state_.max_overlap, state_.series.back().max_overlap);
       while (state_.next_sample <= t_star() + 0.5 * setup_.dt / setup_.unit_time)
         state_.next_sample += scene_.output.timeseries_every;
     }
   };
-  record();
-  fire_observers();
+  // output.end_time is looked at every step (it is a time the user asked for, to the step); it
+  // changes no state, so a run stopped there and resumed with a later end time is the run
+  // that never stopped.
+  const double half_step = 0.5 * setup_.dt / setup_.unit_time;
+  auto end_time_reached = [&] {
+    if (scene_.output.end_time > 0 && t_star() >= scene_.output.end_time - half_step) reached_end_time_ = true;
+    return reached_end_time_;
+  };
+  // A resumed run's checkpoint was written after this step's sample and observers, and before
+  // its rest test (run_command writes the last one after the end row, which is taken back).
   at_rest_ = false;
-  bool done = finished();
+  bool done = false;
+  if (!resumed_) {
+    record();
+    fire_observers();
+    done = finished();
+  } else {
+    if (state_.series_ends_with_end_row) state_.series.pop_back();
+    state_.series_ends_with_end_row = false;
+    if (world_.step_count() % check_every == 0) done = finished();
+  }
+  done = end_time_reached() || done;
   while (!done) {
     world_.step();
     record();
     fire_observers();
+    if (end_time_reached()) done = true;
     if (world_.step_count() % check_every == 0) {
-      done = finished();
+      done = finished() || done;
       const auto now = Clock::now();
       const double secs = std::chrono::duration<double>(now - last_report).count();
       if (progress_ && secs >= 2.0) {
@@ -289,7 +313,11 @@ RunResult AvalancheRun::run() {
       }
     }
   }
-  state_.series.push_back(sample());  // the final state is always in the series
+  // The final state is always in the series, once.
+  if (state_.series.empty() || state_.series.back().t_star != t_star()) {
+    state_.series.push_back(sample());
+    state_.series_ends_with_end_row = true;
+  }
   const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
   state_.wall_seconds += secs;
   RunResult r = result(state_.wall_seconds);

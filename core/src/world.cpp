@@ -11,12 +11,6 @@
 
 namespace runout {
 
-// What one pass over the contacts returns: the guard's largest overlap and, when the energy
-// ledger is on, the energy dissipated this step (J).
-struct PassSums {
-  double worst = 0, loss_normal = 0, loss_friction = 0;
-};
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -252,18 +246,31 @@ PassSums World::pair_forces() {
                                c.fy.data(), c.ft.data()};
   const auto n = static_cast<std::int64_t>(c.size());
   const int threads = settings_.threads;
-  if (threads == 1) return kernel(0, n);
-  PassSums part[kMaxThreads] = {};
+  if (!kLedger) {  // forces are per pair: any split gives the same bits
+    if (threads == 1) return kernel(0, n);
+    PassSums part[kMaxThreads] = {};
 #pragma omp parallel num_threads(threads)
-  {
-    const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
-    part[t] = kernel(n * t / T, n * (t + 1) / T);
+    {
+      const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
+      part[t] = kernel(n * t / T, n * (t + 1) / T);
+    }
+    PassSums total;
+    for (int t = 0; t < threads; ++t) total.worst = std::max(total.worst, part[t].worst);
+    return total;
   }
-  PassSums total;  // combined in thread order (the ledger's sums depend on the thread count)
-  for (int t = 0; t < threads; ++t) {
-    total.worst = std::max(total.worst, part[t].worst);
-    total.loss_normal += part[t].loss_normal;
-    total.loss_friction += part[t].loss_friction;
+  // The ledger's sums are taken over fixed blocks of pairs and the blocks added in order, so
+  // they are the same bits for every thread count (a resumed run may use another, SPEC §8).
+  constexpr std::int64_t kBlock = 256;  // small enough to balance two threads on a few thousand pairs
+  const std::int64_t blocks = (n + kBlock - 1) / kBlock;
+  ledger_blocks_.resize(static_cast<std::size_t>(blocks));
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+    ledger_blocks_[b] = kernel(b * kBlock, std::min(n, (b + 1) * kBlock));
+  PassSums total;
+  for (const PassSums& part : ledger_blocks_) {
+    total.worst = std::max(total.worst, part.worst);
+    total.loss_normal += part.loss_normal;
+    total.loss_friction += part.loss_friction;
   }
   return total;
 }

@@ -91,6 +91,9 @@ struct RunState {
   double peak_ek = 0, t_star_peak_ek = 0;
   double next_sample = 0;
   std::vector<TimeseriesRow> series;
+  // The last row of `series` is the end row run() adds when it stops (not a scheduled sample):
+  // a run resumed from its final checkpoint takes it back, so it is not there twice.
+  bool series_ends_with_end_row = false;
   double wall_seconds = 0;  // spent before a resume
   // Ledger origin at release: total energy, committed hysteresis and dissipation counters.
   double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0;
@@ -145,6 +148,9 @@ class AvalancheRun {
   std::vector<Scheduled> observers_;
   std::function<void(double, double, double)> progress_;
   bool at_rest_ = false;
+  // Continued from a checkpoint: the samples, observers and rest test of the checkpoint's own
+  // step already ran before it was written (the uninterrupted run's schedule, SPEC §5).
+  bool resumed_ = false;
   bool reached_end_time_ = false;
   double min_end_time_ = 0;
 };

@@ -54,7 +54,12 @@ struct StepProfile {
 
 struct ForceSum;
 struct PassResult;
-struct PassSums;
+
+// What one force pass returns besides the forces: the largest guarded overlap share and, with
+// the ledger, the energy it dissipated (J).
+struct PassSums {
+  double worst = 0, loss_normal = 0, loss_friction = 0;
+};
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
 // ended, or dashpot work) and Coulomb sliding. Kept only with StepSettings::track_energy.
@@ -163,6 +168,7 @@ class World {
   double guard_radius_scale_ = 1.0;
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
+  std::vector<PassSums> ledger_blocks_;  // per block of pairs, scratch of pair_forces
 };
 
 }  // namespace runout
