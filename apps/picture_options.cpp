@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "render_cli.hpp"
+#include "runout/errors.hpp"
 
 namespace runout::app {
 
@@ -40,6 +41,26 @@ void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie) {
   cmd->add_flag("--quads", o.sprites_off, "draw discs as quads instead of point sprites");
 }
 
+FrameSize parse_frame_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
+    throw UsageError("--size: \"" + text + "\" is not WxH with 16 <= W, H <= 8192");
+  return {w, h};
+}
+
+std::array<double, 4> parse_window(const std::string& text) {
+  std::array<double, 4> v{};
+  char c1 = 0, c2 = 0, c3 = 0;
+  std::istringstream win(text);
+  if (!(win >> v[0] >> c1 >> v[1] >> c2 >> v[2] >> c3 >> v[3]) || c1 != ',' || c2 != ',' || c3 != ',' ||
+      !win.eof() || !std::all_of(v.begin(), v.end(), [](double a) { return std::isfinite(a); }) ||
+      v[2] <= v[0] || v[3] <= v[1])
+    throw UsageError("--window: \"" + text + "\" is not x0,y0,x1,y1 (m) with x1 > x0 and y1 > y0");
+  return v;
+}
+
 std::vector<double> parse_times(const std::string& list) {
   std::vector<double> out;
   std::stringstream ss(list);
@@ -52,7 +73,7 @@ std::vector<double> parse_times(const std::string& list) {
       used = 0;
     }
     if (used == 0 || used != item.size() || !std::isfinite(v) || v < 0)
-      throw std::invalid_argument("--snapshots: \"" + item + "\" is not a time t* >= 0");
+      throw UsageError("--snapshots: \"" + item + "\" is not a time t* >= 0");
     out.push_back(v);
   }
   std::sort(out.begin(), out.end());

@@ -18,7 +18,15 @@ using Clock = std::chrono::steady_clock;
 
 std::vector<io::Override> parse_overrides(const std::vector<std::string>& texts) {
   std::vector<io::Override> out;
-  for (const auto& t : texts) out.push_back(io::parse_override(t));
+  // A malformed --set (no key=value) is a bad command line; a bad value for a good key is a
+  // bad scene value, reported by the reader with the key and its range.
+  for (const auto& t : texts) {
+    try {
+      out.push_back(io::parse_override(t));
+    } catch (const ConfigError& e) {
+      throw UsageError(std::string("--set ") + t + ": " + e.what());
+    }
+  }
   return out;
 }
 

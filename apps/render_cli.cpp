@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "picture_module.hpp"
 #include "runout/checkpoint.hpp"
@@ -23,11 +24,7 @@ namespace {
 
 render::FrameOptions frame_options(const PictureOptions& o) {
   render::FrameOptions f;
-  int w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(o.size);
-  if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
-    throw std::invalid_argument("--size: \"" + o.size + "\" is not WxH with 16 <= W, H <= 8192");
+  auto [w, h] = parse_frame_size(o.size);
   if (w % 2 || h % 2) {
     std::fprintf(stderr, "runout: note: --size %dx%d rounded up to %dx%d (video needs even sizes)\n", w, h,
                  w + w % 2, h + h % 2);
@@ -39,11 +36,8 @@ render::FrameOptions frame_options(const PictureOptions& o) {
   f.color = render::parse_color_mode(o.color);
   f.camera = render::parse_camera_mode(o.camera);
   if (f.camera == render::CameraMode::window) {
-    char c1, c2, c3;
-    std::istringstream win(o.window);
-    if (!(win >> f.window[0] >> c1 >> f.window[1] >> c2 >> f.window[2] >> c3 >> f.window[3]) || c1 != ',' ||
-        c2 != ',' || c3 != ',' || f.window[2] <= f.window[0] || f.window[3] <= f.window[1])
-      throw std::invalid_argument("--window: \"" + o.window + "\" is not x0,y0,x1,y1 with x1 > x0 and y1 > y0");
+    const auto v = parse_window(o.window);
+    for (int k = 0; k < 4; ++k) f.window[k] = v[k];
   }
   f.front_width = o.front_width;
   f.spokes = o.spokes;
@@ -228,6 +222,19 @@ void plot_study(const std::vector<StudyPoint>& points, const std::string& title,
 }
 
 int compare_command(const CompareOptions& o) {
+  // Exit codes: 0 match, 1 no match, 2 bad input (an unreadable PNG, a --diff that cannot be
+  // written) — the last checked before anything is compared, so 1 always means "differ".
+  if (!o.diff.empty()) {
+    const std::filesystem::path d(o.diff);
+    const std::filesystem::path folder = d.has_parent_path() ? d.parent_path() : ".";
+    std::error_code ec;
+    if (std::filesystem::is_directory(d, ec) || !std::filesystem::is_directory(folder, ec) ||
+        ::access(folder.c_str(), W_OK | X_OK) != 0) {
+      std::fprintf(stderr, "runout compare: --diff: cannot write %s (no such writable folder, or it is a folder)\n",
+                   o.diff.c_str());
+      return 2;
+    }
+  }
   render::Image expected, actual;
   try {
     expected = render::read_png(o.expected);
@@ -247,7 +254,14 @@ int compare_command(const CompareOptions& o) {
   }
   std::printf("differing_pixels: %ld\nshare: %.6f\nrms: %.3f\nmax_difference: %d\nmatch: %s\n",
               c.differing_pixels, c.share, c.rms, c.max_difference, c.match ? "yes" : "no");
-  if (!o.diff.empty()) render::write_png(o.diff, c.diff);
+  if (!o.diff.empty()) {
+    try {
+      render::write_png(o.diff, c.diff);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "runout compare: --diff: %s\n", e.what());
+      return 2;
+    }
+  }
   return c.match ? 0 : 1;
 }
 

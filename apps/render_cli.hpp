@@ -3,6 +3,7 @@
 // (picture_module.hpp) defines them, and picture_loader.cpp forwards each call to it.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,8 +38,13 @@ struct PictureOptions {
 // movie, frames and snapshots options too.
 void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie);
 
-// Parses "0,20,40" into sorted times; throws std::invalid_argument with the bad item.
+// Parses "0,20,40" into sorted times; throws UsageError with the bad item.
 std::vector<double> parse_times(const std::string& list);
+// "1280x720" (16..8192 each; odd sizes are rounded up later, for video) and "x0,y0,x1,y1";
+// both throw UsageError naming the option.
+struct FrameSize { int width = 0, height = 0; };
+FrameSize parse_frame_size(const std::string& text);
+std::array<double, 4> parse_window(const std::string& text);
 
 struct RenderOptions {
   std::string checkpoint;

@@ -1,6 +1,9 @@
 #include "run_command.hpp"
 
 #include <omp.h>
+#include <signal.h>
+
+#include <atomic>
 
 #include <chrono>
 #include <cmath>
@@ -9,6 +12,7 @@
 #include <stdexcept>
 
 #include "prepare.hpp"
+#include "run_folder.hpp"
 #include "render_cli.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
@@ -24,23 +28,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Writes OUT/checkpoint.bin (atomically) at its schedule.
+// Writes OUT/checkpoint.bin at its schedule, keeping the one before (run_folder.hpp).
 class CheckpointWriter : public Observer {
  public:
-  CheckpointWriter(std::string path, std::uint64_t key, const AvalancheRun*& run)
-      : path_(std::move(path)), key_(key), run_(run) {}
+  CheckpointWriter(const RunFolder& folder, std::uint64_t key, const AvalancheRun*& run)
+      : folder_(folder), key_(key), run_(run) {}
   void observe(const World& world, double t_star) override {
     if (t_star <= 0) return;
-    io::write_file_atomically(path_, encode_checkpoint(world, key_, encode_run_state(run_->state())));
+    write_checkpoint(folder_, encode_checkpoint(world, key_, encode_run_state(run_->state())));
   }
 
  private:
-  std::string path_;
+  const RunFolder& folder_;
   std::uint64_t key_;
   const AvalancheRun*& run_;
 };
 
-// LAMMPS dump frames, one file each: OUT/dump/frame.<step>.lammpstrj (OVITO reads the sequence).
+// LAMMPS dump frames, one file each: dump/frame.<step>.lammpstrj (OVITO reads the sequence).
 class DumpWriter : public Observer {
  public:
   explicit DumpWriter(std::string dir) : dir_(std::move(dir)) { io::make_directories(dir_); }
@@ -64,6 +68,52 @@ int resolve_threads(int threads, const SceneSetup& setup) {
   return discs >= 2000 ? std::max(1, omp_get_num_procs()) : 1;
 }
 
+// SIGINT and SIGTERM ask the run to stop after the current step. A signal handler can reach
+// nothing but a static, so this one flag is the program's only global; it lives here, and
+// only while a run steps (SignalScope).
+std::atomic<int> stop_signal{0};
+extern "C" void request_stop(int signo) { stop_signal.store(signo); }
+
+class SignalScope {
+ public:
+  SignalScope() {
+    stop_signal.store(0);
+    struct sigaction sa = {};
+    sa.sa_handler = request_stop;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~SignalScope() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  SignalScope(const SignalScope&) = delete;
+  SignalScope& operator=(const SignalScope&) = delete;
+
+ private:
+  struct sigaction old_int_ = {}, old_term_ = {};
+};
+
+// Every picture option a run will use, checked before anything is settled or written.
+void check_picture_options(const PictureOptions& o, const SceneDef& scene) {
+  if (!o.wants_pictures()) return;
+  parse_frame_size(o.size);
+  if (o.camera == "window") parse_window(o.window);
+  else if (!o.window.empty()) throw UsageError("--window needs --camera window");
+  if (!o.snapshots.empty()) {
+    const double last = parse_times(o.snapshots).back();
+    // The run goes on to the last snapshot: beyond the time limit it would never end.
+    if (last > scene.rest.max_time)
+      throw UsageError("--snapshots: t* = " + o.snapshots.substr(o.snapshots.rfind(',') + 1) +
+                       " is beyond rest.max_time = " + std::to_string(scene.rest.max_time) +
+                       " (t*); raise it with --set rest.max_time=... or drop that snapshot");
+  }
+  if (!o.movie.empty()) check_file_writable(o.movie, "--movie");
+  if (!o.frames_dir.empty()) check_folder_writable(o.frames_dir, "--frames");
+  if (!o.snapshot_dir.empty()) check_folder_writable(o.snapshot_dir, "--snapshot-dir");
+}
+
 }  // namespace
 
 int run_command(const RunOptions& o) {
@@ -75,52 +125,66 @@ int run_command(const RunOptions& o) {
     // Nothing else asked for more: the run ends with the last picture (output.end_time, so the
     // resolved scene repeats it).
     if (o.pictures.snapshots.empty())
-      throw std::invalid_argument("--end-at-last-snapshot needs --snapshots (the times to stop after)");
+      throw UsageError("--end-at-last-snapshot needs --snapshots (the times to stop after)");
     const double last = parse_times(o.pictures.snapshots).back();
     if (!(last > 0))
-      throw std::invalid_argument("--end-at-last-snapshot: the last snapshot must come after t* = 0 (got " +
-                                  o.pictures.snapshots + ")");
+      throw UsageError("--end-at-last-snapshot: the last snapshot must come after t* = 0 (got " +
+                       o.pictures.snapshots + ")");
     if (scene.output.end_time <= 0 || scene.output.end_time > last) scene.output.end_time = last;
   }
   const SceneSetup setup = derive_setup(scene, source);
   check_runnable(scene, setup, source);
+  check_picture_options(o.pictures, scene);
+  check_folder_writable(o.out_dir, "--out");
   const int threads = resolve_threads(o.threads, setup);
 
-  io::make_directories(o.out_dir);
-  io::write_file_atomically(o.out_dir + "/scene.resolved.toml", io::write_scene(scene));
-  // A summary from an earlier run in this folder must not pass for this run's.
-  std::remove((o.out_dir + "/summary.json").c_str());
-
-  const std::string checkpoint_path = o.out_dir + "/checkpoint.bin";
+  // What the folder holds decides what this run may do to it; nothing is touched yet.
+  const RunFolder folder(o.out_dir);
   const std::uint64_t key = io::physics_key(scene);
   PreparedWorld prepared{build_explicit_world(scene, setup, threads), false, 0.0, std::nullopt};
   std::optional<RunState> resumed;
-  if (o.resume && io::file_exists(checkpoint_path)) {
-    resumed = decode_run_state(decode_checkpoint(io::read_file(checkpoint_path), key, prepared.world,
-                                                 checkpoint_path),
-                               checkpoint_path);
+  const FolderPlan plan = plan_folder(folder, key, o.resume, o.overwrite,
+                                      [&](const std::string& bytes, const std::string& path) {
+                                        World trial = prepared.world;
+                                        resumed = decode_run_state(decode_checkpoint(bytes, key, trial, path), path);
+                                        prepared.world = std::move(trial);
+                                      });
+  for (const auto& note : plan.notes) std::fprintf(stderr, "runout: %s\n", note.c_str());
+  if (plan.resume) {
     if (!o.quiet)
-      std::fprintf(stderr, "runout: resuming from %s at t* = %.3f\n", checkpoint_path.c_str(),
+      std::fprintf(stderr, "runout: resuming from %s at t* = %.3f\n", plan.resume->path.c_str(),
                    prepared.world.time() / setup.unit_time);
   } else {
+    resumed.reset();
     prepared = prepare(scene, setup, threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
                        !o.no_cache, o.quiet);
   }
   World& world = prepared.world;
 
+  // From here on the folder is this run's: an earlier run's own files go (summary.json first),
+  // temporaries of killed runs too, and the scene is written beside the checkpoints.
+  io::make_directories(folder.dir);
+  if (plan.clear && !plan.resume) clear_own_files(folder);
+  io::remove_stale_temporaries(folder.dir);
+  std::remove(folder.summary.c_str());
+  io::write_file_atomically(folder.scene, io::write_scene(scene));
+
   AvalancheRun run = resumed ? AvalancheRun(world, scene, setup, *resumed)
                              : AvalancheRun(world, scene, setup);
   const AvalancheRun* run_ptr = &run;
-  CheckpointWriter checkpoints(checkpoint_path, key, run_ptr);
+  CheckpointWriter checkpoints(folder, key, run_ptr);
   if (scene.output.checkpoint_every > 0)
     run.add_observer(checkpoints, {scene.output.checkpoint_every, scene.output.checkpoint_every, {}});
   std::optional<DumpWriter> dumps;
   if (scene.output.dump_every > 0) {
-    dumps.emplace(o.out_dir + "/dump");
+    dumps.emplace(folder.staging + "/dump");
     run.add_observer(*dumps, {scene.output.dump_every, 0.0, {}});
   }
   std::unique_ptr<PictureSession> pictures;
-  if (o.pictures.wants_pictures()) pictures = attach_pictures(o.pictures, run, scene, setup, o.out_dir);
+  if (o.pictures.wants_pictures()) {
+    if (o.pictures.snapshot_dir.empty() && !o.pictures.snapshots.empty()) io::make_directories(folder.staging);
+    pictures = attach_pictures(o.pictures, run, scene, setup, folder.staging);
+  }
   if (!o.quiet) {
     std::fprintf(stderr, "runout: %zu discs, dt = %.3e s (%.0f steps per t*), %d thread%s\n",
                  world.particles().size(), setup.dt, setup.unit_time / setup.dt, threads,
@@ -129,7 +193,22 @@ int run_command(const RunOptions& o) {
       std::fprintf(stderr, "  t* = %8.2f  E_k/Ep0 = %.3e  %8.0f steps/s\n", t_star, ratio, rate);
     });
   }
-  const RunResult result = run.run();
+  RunResult result;
+  {
+    const SignalScope signals;
+    run.set_stop_request(&stop_signal);
+    result = run.run();
+  }
+  if (result.interrupted) {
+    // A resumable partial folder: the scene, this step's checkpoint and the staged results. The
+    // movie's .part goes with the picture session (a movie cannot be continued).
+    write_checkpoint(folder, encode_checkpoint(world, key, encode_run_state(run.state())));
+    pictures.reset();
+    const int signo = stop_signal.load();
+    std::fprintf(stderr, "runout: stopped by %s at t* = %.3f; checkpoint %s written; continue with --resume\n",
+                 signo == SIGTERM ? "SIGTERM" : "SIGINT", result.t_star_end, folder.checkpoint.c_str());
+    return 128 + signo;
+  }
   if (pictures) {
     pictures->finish();
     if (!o.quiet) std::fprintf(stderr, "runout: %s\n", pictures->report().c_str());
@@ -148,9 +227,11 @@ int run_command(const RunOptions& o) {
   ctx.settle = prepared.settle;
   for (const auto& sp : scene.species) ctx.species_names.push_back(sp.name);
 
-  io::write_file_atomically(o.out_dir + "/timeseries.csv", io::timeseries_csv(run.state().series, scene.output.series));
-  io::write_file_atomically(checkpoint_path, encode_checkpoint(world, key, encode_run_state(run.state())));
-  io::write_file_atomically(o.out_dir + "/summary.json", io::summary_json(result, ctx));
+  // The results together, summary.json last: a folder with a summary is a complete result.
+  publish_staged(folder);
+  io::write_file_atomically(folder.timeseries, io::timeseries_csv(run.state().series, scene.output.series));
+  write_checkpoint(folder, encode_checkpoint(world, key, encode_run_state(run.state())));
+  io::write_file_atomically(folder.summary, io::summary_json(result, ctx));
 
   if (!o.quiet) {
     if (result.at_rest)
@@ -158,10 +239,12 @@ int run_command(const RunOptions& o) {
                    result.t_star_rest, result.final_energy.t_star, result.t_star_end);
     else
       std::fprintf(stderr, "runout: stopped at t* = %.2f, not at rest", result.t_star_end);
-    std::fprintf(stderr, "; mu_global = H_cm/L_cm = %.4f; %.3g particle-steps/s\n", result.mu_global,
+    std::fprintf(stderr, "; mu_global = H_cm/L_cm = %s; %.3g particle-steps/s\n",
+                 std::isfinite(result.mu_global) ? std::to_string(result.mu_global).c_str() : "undefined (L_cm = 0)",
                  result.particle_steps_per_second);
   }
-  std::printf("mu_global: %.6f\n", result.mu_global);
+  if (std::isfinite(result.mu_global)) std::printf("mu_global: %.6f\n", result.mu_global);
+  else std::printf("mu_global: null\n");
   if (!result.at_rest && !result.reached_end_time) {
     std::fprintf(stderr,
                  "runout: the mass was not at rest by rest.max_time = %g (t*); summary.json says "

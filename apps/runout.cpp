@@ -5,6 +5,7 @@
 
 #include "render_cli.hpp"
 #include "run_command.hpp"
+#include "runout/errors.hpp"
 
 int main(int argc, char** argv) {
   CLI::App cli{"runout: 2D discrete-element simulation of granular avalanches"};
@@ -25,7 +26,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--dump-every", run.dump_every,
                       "write LAMMPS dump frames every DT_STAR (0: off; default: output.dump_every)")
       ->check(CLI::Range(0.0, 1e7));
-  run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin if present");
+  run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin (or the one before it) if present");
+  run_cmd->add_flag("--overwrite", run.overwrite, "replace the results of another scene in OUT (runout's own files only)");
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   run_cmd->add_flag("--no-cache", run.no_cache, "always settle the pile afresh");
   run_cmd->add_flag("--quiet,-q", run.quiet, "no progress on stderr");
@@ -92,6 +94,9 @@ int main(int argc, char** argv) {
     if (*render_cmd) return runout::app::render_command(render);
     if (*study_cmd) return runout::app::study_command(study);
     if (*compare_cmd) return runout::app::compare_command(compare);
+  } catch (const runout::UsageError& e) {
+    std::fprintf(stderr, "runout: error: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "runout: error: %s\n", e.what());
     return 1;

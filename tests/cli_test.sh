@@ -127,7 +127,7 @@ if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
   awk -F': ' '/"t_star_end"/ { t = $2 + 0; ok = (t > 1.9 && t < 2.1) } END { exit !ok }' "$work/endsnap/summary.json" ||
     { echo "FAIL end_at_snapshot: did not stop at t* = 2"; grep t_star_end "$work/endsnap/summary.json"; fail=$((fail + 1)); }
 fi
-check end_needs_snapshots 1 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
+check end_needs_snapshots 2 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

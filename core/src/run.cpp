@@ -167,7 +167,10 @@ TimeseriesRow AvalancheRun::sample() const {
   const double d = setup_.unit_length;
   TimeseriesRow row;
   row.t_star = t_star();
-  const double ep0 = state_.ep0 > 0 ? state_.ep0 : 1.0;
+  // With no potential energy at release (a lone disc on the floor) every ratio to Ep0 is
+  // undefined: NaN, written as null / an empty field.
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  const double ep0 = state_.ep0 > 0 ? state_.ep0 : none;
   row.ek_over_ep0 = translational_energy(p) / ep0;
   row.erot_over_ep0 = rotational_energy(p) / ep0;
   const Eigen::Vector2d com = centre_of_mass(p);
@@ -175,7 +178,6 @@ TimeseriesRow AvalancheRun::sample() const {
   row.y_cm = com.y() / d;
   // Only the series an output asks for (OutputDef::series); the others stay NaN.
   const SeriesSelection& want = scene_.output.series;
-  constexpr double none = std::numeric_limits<double>::quiet_NaN();
   row.small_mean_height = row.large_mean_height = row.basal_spin = row.front_x = row.max_overlap = none;
   row.ep_over_ep0 = row.elastic_over_ep0 = row.dissipated_normal_over_ep0 = none;
   row.dissipated_friction_over_ep0 = row.residual_over_ep0 = none;
@@ -300,6 +302,10 @@ RunResult AvalancheRun::run() {
     world_.step();
     record();
     fire_observers();
+    if (stop_request_ && stop_request_->load(std::memory_order_relaxed) != 0) {
+      interrupted_ = true;  // no end row: the state is exactly a checkpoint taken at this step
+      break;
+    }
     if (end_time_reached()) done = true;
     if (world_.step_count() % check_every == 0) {
       done = finished() || done;
@@ -314,7 +320,7 @@ RunResult AvalancheRun::run() {
     }
   }
   // The final state is always in the series, once.
-  if (state_.series.empty() || state_.series.back().t_star != t_star()) {
+  if (!interrupted_ && (state_.series.empty() || state_.series.back().t_star != t_star())) {
     state_.series.push_back(sample());
     state_.series_ends_with_end_row = true;
   }
@@ -333,6 +339,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   const auto& p = frozen ? state_.rest_particles : world_.particles();
   r.at_rest = frozen || at_rest_;
   r.reached_end_time = reached_end_time_;
+  r.interrupted = interrupted_;
   r.t_star_end = t_star();
   if (frozen) r.t_star_rest = state_.t_star_rest;
   else if (at_rest_) r.t_star_rest = state_.below_since;
@@ -349,7 +356,9 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.com_rest = centre_of_mass(p);
   r.H_cm = std::abs(r.com_rest.y() - r.com_release.y());   // eq. 4.2
   r.L_cm = std::abs(r.com_rest.x() - r.com_release.x());   // eq. 4.3
-  r.mu_global = r.L_cm > 0 ? r.H_cm / r.L_cm : std::numeric_limits<double>::quiet_NaN();  // eq. 4.4
+  // eq. 4.4; undefined (null) when the centre of mass did not travel: below a millionth of d,
+  // L_cm is rounding noise (two discs that collide head-on and stop) and H/L would be noise too.
+  r.mu_global = r.L_cm > 1e-6 * setup_.unit_length ? r.H_cm / r.L_cm : std::numeric_limits<double>::quiet_NaN();
   const double front = farthest_edge_x(p);
   r.H_front = state_.top_release.top_y - state_.energy_reference_y;
   r.L_front = front - state_.top_release.top_x;

@@ -128,6 +128,52 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
   return s;
 }
 
+namespace {
+
+// Explicit discs start where the user put them: two that overlap would fly apart at the first
+// step (and be reported as an impact or an escape far from the cause), one outside the walls'
+// box would be reported as having left it. Both are named as the scene's particles[k].
+void check_explicit_discs(const SceneDef& scene, const SceneSetup& setup, const std::string& source) {
+  const auto& discs = scene.particles;
+  const auto name = [](std::size_t k) { return "particles[" + std::to_string(k) + "]"; };
+  if (!setup.walls.empty()) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300;
+    for (const auto& w : setup.walls)
+      for (const auto& [x, y] : w.points) { x0 = std::min(x0, x); x1 = std::max(x1, x); y0 = std::min(y0, y); }
+    for (std::size_t k = 0; k < discs.size(); ++k)
+      if (discs[k].x < x0 || discs[k].x > x1 || discs[k].y < y0) {
+        std::ostringstream msg;
+        msg << "the disc at (" << discs[k].x << ", " << discs[k].y << ") m lies outside the walls' box (x in ["
+            << x0 << ", " << x1 << "], y >= " << y0 << "): move it inside or extend the walls";
+        throw ConfigError(source, name(k), msg.str());
+      }
+  }
+  // Sweep along x: only discs whose x ranges meet can overlap (n log n, not n^2).
+  std::vector<std::size_t> order(discs.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return discs[a].x < discs[b].x; });
+  double widest = 0;
+  for (const auto& d : discs) widest = std::max(widest, d.diameter);
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    const ParticleDef& p = discs[order[a]];
+    for (std::size_t b = a + 1; b < order.size() && discs[order[b]].x - p.x < widest; ++b) {
+      const ParticleDef& q = discs[order[b]];
+      const double sum = 0.5 * (p.diameter + q.diameter);
+      const double gap = std::hypot(q.x - p.x, q.y - p.y) - sum;
+      // A hundredth of the smaller radius: discs set in contact by hand stay allowed.
+      if (gap < -0.01 * 0.5 * std::min(p.diameter, q.diameter)) {
+        const std::size_t i = std::min(order[a], order[b]), j = std::max(order[a], order[b]);
+        std::ostringstream msg;
+        msg << "overlaps " << name(j) << " by " << -gap << " m (centres " << sum + gap
+            << " m apart, radii add up to " << sum << " m): move them apart";
+        throw ConfigError(source, name(i), msg.str());
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::string& source) {
   int total = 0;
   for (int c : setup.counts) total += c;
@@ -146,6 +192,7 @@ void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::s
           << " t*); use at least one step (0 switches checkpoints and dumps off)";
       throw ConfigError(source, key, msg.str());
     }
+  if (!scene.avalanche) check_explicit_discs(scene, setup, source);
 }
 
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads) {

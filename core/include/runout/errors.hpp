@@ -27,6 +27,13 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A bad command-line value (an option, a path to write to, a folder holding other results):
+// the command exits 2 (README), naming the option.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 // A file could not be read or written, or is corrupt.
 class IoError : public std::runtime_error {
  public:

@@ -3,6 +3,7 @@
 // calls observers at chosen t*; and reports the study's measurements.
 #pragma once
 
+#include <atomic>
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
@@ -58,6 +59,7 @@ struct Schedule {
 struct RunResult {
   bool at_rest = false;
   bool reached_end_time = false;  // stopped by output.end_time
+  bool interrupted = false;       // stopped on request (a signal) after a whole step: resumable
   double t_star_rest = std::numeric_limits<double>::quiet_NaN();
   double t_star_end = 0;
   std::int64_t steps = 0;
@@ -123,6 +125,9 @@ class AvalancheRun {
   void set_progress(std::function<void(double, double, double)> progress) { progress_ = std::move(progress); }
   // The run goes on at least until this t* even once at rest (the last requested snapshot).
   void set_min_end_time(double t_star) { min_end_time_ = t_star; }
+  // Looked at after every step; once non-zero the run stops there, before that step's rest
+  // test, so its state is a checkpoint's and a resume continues exactly (SIGINT, SIGTERM).
+  void set_stop_request(const std::atomic<int>* flag) { stop_request_ = flag; }
   RunResult run();
 
   const RunState& state() const { return state_; }
@@ -151,6 +156,8 @@ class AvalancheRun {
   // Continued from a checkpoint: the samples, observers and rest test of the checkpoint's own
   // step already ran before it was written (the uninterrupted run's schedule, SPEC §5).
   bool resumed_ = false;
+  const std::atomic<int>* stop_request_ = nullptr;
+  bool interrupted_ = false;
   bool reached_end_time_ = false;
   double min_end_time_ = 0;
 };

@@ -1,6 +1,7 @@
 #include "runout/io/files.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -39,6 +40,45 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
     ::unlink(tmp.c_str());
     throw IoError("cannot write " + path + ": " + why);
   }
+  // The rename is durable only once the folder's entry is on disk too.
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const int dir = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+
+std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw IoError("cannot read " + path + ": no such file");
+  if (!std::filesystem::is_regular_file(status))
+    throw IoError("cannot read " + path + ": not a regular file (a folder, device or pipe)");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw IoError("cannot read " + path + ": " + ec.message());
+  if (size > max_bytes)
+    throw IoError("cannot read " + path + ": " + std::to_string(size) + " bytes, more than the " +
+                  std::to_string(max_bytes) + " allowed");
+  return read_file(path);
+}
+
+int remove_stale_temporaries(const std::string& folder) {
+  std::error_code ec;
+  int removed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const auto at = name.rfind(".tmp.");
+    if (at == std::string::npos || at + 5 >= name.size()) continue;
+    const std::string pid_text = name.substr(at + 5);
+    if (pid_text.find_first_not_of("0123456789") != std::string::npos || pid_text.size() > 9) continue;
+    const auto pid = static_cast<pid_t>(std::stol(pid_text));
+    // Only files whose writer is gone: kill(pid, 0) fails with ESRCH for no such process.
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH &&
+        std::filesystem::remove(entry.path(), ec))
+      ++removed;
+  }
+  return removed;
 }
 
 std::string read_file(const std::string& path) {

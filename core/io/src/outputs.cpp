@@ -144,7 +144,11 @@ std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesS
     bool first = true;
     for (const auto& c : columns) {
       if (!c.on) continue;
-      std::snprintf(cell, sizeof cell, c.format, r.*c.field);
+      // An undefined value (NaN, or a ratio to an Ep0 of zero) is an empty field, which every
+      // CSV reader takes as missing; never "nan" or "inf".
+      const double v = r.*c.field;
+      if (std::isfinite(v)) std::snprintf(cell, sizeof cell, c.format, v);
+      else cell[0] = '\0';
       if (!first) out += ',';
       out += cell;
       first = false;

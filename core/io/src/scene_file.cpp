@@ -432,7 +432,8 @@ SceneDef read_scene(const std::string& text, const std::string& source,
 SceneDef read_scene_file(const std::string& path, const std::vector<Override>& overrides) {
   std::string text;
   try {
-    text = read_file(path);
+    // 64 MiB: far above any scene (a thesis scene is under 1 kB; explicit discs take ~60 bytes each).
+    text = read_regular_file(path, 64u << 20);
   } catch (const IoError& e) {
     throw ConfigError(path, "(file)", e.what());
   }
