@@ -24,7 +24,7 @@ std::vector<io::Override> parse_overrides(const std::vector<std::string>& texts)
     try {
       out.push_back(io::parse_override(t));
     } catch (const ConfigError& e) {
-      throw UsageError(std::string("--set ") + t + ": " + e.what());
+      throw UsageError(e.what());
     }
   }
   return out;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 
 #include "prepare.hpp"
@@ -105,9 +106,12 @@ void check_picture_options(const PictureOptions& o, const SceneDef& scene) {
     const double last = parse_times(o.snapshots).back();
     // The run goes on to the last snapshot: beyond the time limit it would never end.
     if (last > scene.rest.max_time)
-      throw UsageError("--snapshots: t* = " + o.snapshots.substr(o.snapshots.rfind(',') + 1) +
-                       " is beyond rest.max_time = " + std::to_string(scene.rest.max_time) +
-                       " (t*); raise it with --set rest.max_time=... or drop that snapshot");
+    {
+      std::ostringstream msg;
+      msg << "--snapshots: t* = " << last << " is beyond rest.max_time = " << scene.rest.max_time
+          << " (t*); raise it with --set rest.max_time=... or drop that snapshot";
+      throw UsageError(msg.str());
+    }
   }
   if (!o.movie.empty()) check_file_writable(o.movie, "--movie");
   if (!o.frames_dir.empty()) check_folder_writable(o.frames_dir, "--frames");
