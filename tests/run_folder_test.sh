@@ -47,7 +47,10 @@ end_time = 5.0
 TOML
 
 # 1. Another scene's folder is refused and left exactly as it was; its checkpoint still renders.
-"$bin" run "$box" --out "$work/A" -q --dump-every 0.5 >/dev/null || bad "box run"
+pictures=()
+[ -e "$(dirname "$bin")/runout_pictures.so" ] && pictures=(--snapshots 0,1)
+"$bin" run "$box" --out "$work/A" -q --dump-every 0.5 "${pictures[@]}" >/dev/null || bad "box run"
+[ -e "$work/A/dump" ] && [ ! -e "$work/A/.partial" ] && ok || bad "the box run's results were not published: $(ls -a "$work/A")"
 before=$(tree_sum "$work/A")
 out=$("$bin" run "$work/two.toml" --out "$work/A" -q 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "holds the results of another scene" <<<"$out" && ok || bad "other scene: exit $rc: $out"
@@ -61,7 +64,8 @@ fi
 # 2. --overwrite replaces runout's own files only (the old dump frames go, a user's file stays).
 echo "mine" >"$work/A/notes.txt"
 "$bin" run "$work/two.toml" --out "$work/A" -q --overwrite >/dev/null && ok || bad "--overwrite run"
-[ -e "$work/A/notes.txt" ] && [ ! -e "$work/A/dump" ] && [ -s "$work/A/summary.json" ] && ok || bad "--overwrite cleared the wrong files: $(ls "$work/A")"
+[ -e "$work/A/notes.txt" ] && [ ! -e "$work/A/dump" ] && ! ls "$work/A"/snapshot_t*.png >/dev/null 2>&1 &&
+  [ -s "$work/A/summary.json" ] && ok || bad "--overwrite cleared the wrong files: $(ls "$work/A")"
 # the same scene again replaces its own complete result without --overwrite
 "$bin" run "$work/two.toml" --out "$work/A" -q >/dev/null && ok || bad "rerun of the same scene"
 
@@ -75,6 +79,10 @@ half = 0.5 / s["steps_per_t_star"]
 assert abs(s["t_star_end"] - 5.0) <= half + 1e-12, s["t_star_end"]
 PY
 grep -qiE "nan|inf" "$work/A/timeseries.csv" && bad "nan or inf in timeseries.csv" || ok
+# a lone disc and no walls: no potential energy to measure E_k against, so those are empty
+printf '[species.disc]\ndiameter = 0.5\n[[particles]]\nx = 0.0\ny = 0.0\nvx = 1.0\n[output]\nend_time = 2.0\n' >"$work/lone.toml"
+"$bin" run "$work/lone.toml" --out "$work/lone" -q >/dev/null 2>&1
+[ -s "$work/lone/timeseries.csv" ] && ! grep -qiE "nan|inf" "$work/lone/timeseries.csv" && ok || bad "lone disc: $(head -3 "$work/lone/timeseries.csv" 2>&1)"
 # resuming the ended run changes nothing and adds no row
 cp "$work/A/timeseries.csv" "$work/two_series.csv"; cp "$work/A/summary.json" "$work/two_summary.json"
 "$bin" run "$work/two.toml" --out "$work/A" -q --resume >/dev/null && ok || bad "resume of an ended run"
