@@ -92,6 +92,7 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
   if (use_cache) {
     try {
       io::make_directories(cache_dir);
+      io::remove_stale_temporaries(cache_dir);  // of runs killed while caching a pile
       io::write_file_atomically(path + ".json", io::settle_report_json(settle));
       io::write_file_atomically(path, encode_checkpoint(world, key, {}));
     } catch (const IoError& e) {

@@ -105,7 +105,7 @@ int render_command(const RenderOptions& o) {
   const SceneDef scene = io::read_scene_file(scene_path);
   const SceneSetup setup = derive_setup(scene, scene_path);
   World world = build_explicit_world(scene, setup, 1);
-  const std::string bytes = io::read_file(o.checkpoint);
+  const std::string bytes = io::read_regular_file(o.checkpoint, UINTMAX_MAX);  // not a FIFO or device
   decode_checkpoint(bytes, io::physics_key(scene), world, o.checkpoint);
   const double t_star = world.time() / setup.unit_time;
   render::FrameMaker maker(frame_options(o.picture), scene, setup);
