@@ -197,12 +197,11 @@ int run_command(const RunOptions& o) {
       std::fprintf(stderr, "  t* = %8.2f  E_k/Ep0 = %.3e  %8.0f steps/s\n", t_star, ratio, rate);
     });
   }
-  RunResult result;
-  {
-    const SignalScope signals;
-    run.set_stop_request(&stop_signal);
-    result = run.run();
-  }
+  // The handlers stay until summary.json is written: a signal that arrives once the run has
+  // ended (while the movie drains, say) lets its results be finished instead of lost.
+  const SignalScope signals;
+  run.set_stop_request(&stop_signal);
+  const RunResult result = run.run();
   if (result.interrupted) {
     // A resumable partial folder: the scene, this step's checkpoint and the staged results. The
     // movie's .part goes with the picture session (a movie cannot be continued).
@@ -236,6 +235,8 @@ int run_command(const RunOptions& o) {
   io::write_file_atomically(folder.timeseries, io::timeseries_csv(run.state().series, scene.output.series));
   write_checkpoint(folder, encode_checkpoint(world, key, encode_run_state(run.state())));
   io::write_file_atomically(folder.summary, io::summary_json(result, ctx));
+  if (stop_signal.load() != 0)
+    std::fprintf(stderr, "runout: a stop signal came after the run had ended; its results are complete\n");
 
   if (!o.quiet) {
     if (result.at_rest)
