@@ -121,8 +121,10 @@ void check_picture_options(const PictureOptions& o, const SceneDef& scene) {
 }  // namespace
 
 int run_command(const RunOptions& o) {
-  const std::string source = o.scene_path.empty() ? "<embedded quick scene>" : o.scene_path;
-  SceneDef scene = load_scene(o.scene_path, o.overrides, io::embedded_quick_scene(), source);
+  const std::string source = !o.scene_path.empty() ? o.scene_path
+                             : !o.scene_text.empty() ? o.scene_name : "<embedded quick scene>";
+  SceneDef scene = load_scene(o.scene_path, o.overrides,
+                              o.scene_text.empty() ? io::embedded_quick_scene() : o.scene_text, source);
   if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
   if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
   if (o.end_at_last_snapshot) {
@@ -172,6 +174,10 @@ int run_command(const RunOptions& o) {
   io::remove_stale_temporaries(folder.dir);
   std::remove(folder.summary.c_str());
   io::write_file_atomically(folder.scene, io::write_scene(scene));
+  if (!plan.resume && prepared.settle)
+    io::write_file_atomically(folder.preparation, io::settle_report_json(*prepared.settle));
+  else if (plan.resume && io::file_exists(folder.preparation))
+    prepared.settle = io::read_settle_report(io::read_file(folder.preparation));
 
   AvalancheRun run = resumed ? AvalancheRun(world, scene, setup, *resumed)
                              : AvalancheRun(world, scene, setup);

@@ -10,7 +10,9 @@
 namespace runout::app {
 
 struct RunOptions {
-  std::string scene_path;  // empty: the embedded quick pile
+  std::string scene_path;  // empty: scene_text, else the embedded quick pile
+  std::string scene_text;  // a scene given as text (a sweep's base), named scene_name in errors
+  std::string scene_name;
   std::string out_dir;
   std::vector<std::string> overrides;
   int threads = 0;  // 0: all cores
@@ -51,5 +53,19 @@ int run_command(const RunOptions& o);    // returns the process exit code
 // knobs on several piles; writes runs.csv, study.csv, study.md and study.png into the output folder.
 int study_command(const StudyOptions& o);
 int bench_command(const BenchOptions& o);
+
+struct SweepOptions {
+  std::string sweep_path;
+  std::string out_dir;
+  int jobs = 1;              // cases side by side on this machine
+  int threads_per_job = 1;
+  std::string one_case;      // --case K (index from 0, or the case's name): run only that one
+  std::string emit;          // "slurm" or "parallel": write the job script / list and stop
+  bool gather = false;       // only collect results.csv and points.csv
+  std::string cache_dir;
+  std::string self;          // this binary, for the cases it starts
+};
+// `runout sweep` (sweep_command.cpp): one scene over axes, each case in DIR/cases/NAME, resumable.
+int sweep_command(const SweepOptions& o);
 
 }  // namespace runout::app

@@ -54,7 +54,8 @@ RunFolder::RunFolder(std::string d)
       checkpoint(dir + "/checkpoint.bin"),
       previous_checkpoint(dir + "/checkpoint.prev.bin"),
       staging(dir + "/.partial"),
-      dump(dir + "/dump") {}
+      dump(dir + "/dump"),
+      preparation(dir + "/preparation.json") {}
 
 void check_folder_writable(const std::string& path, const std::string& option) {
   std::error_code ec;
@@ -82,7 +83,7 @@ namespace {
 bool holds_own_files(const RunFolder& f) {
   std::error_code ec;
   for (const std::string& p : {f.scene, f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint,
-                               f.staging, f.dump})
+                               f.staging, f.dump, f.preparation})
     if (path_present(p)) return true;
   for (const auto& e : fs::directory_iterator(f.dir, ec))
     if (is_own_snapshot(e.path().filename().string())) return true;
@@ -145,7 +146,7 @@ FolderPlan plan_folder(const RunFolder& f, std::uint64_t key, bool resume, bool 
 void clear_own_files(const RunFolder& f) {
   std::error_code ec;
   // summary.json first: from here on the folder is not a complete result.
-  for (const std::string& p : {f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint, f.scene})
+  for (const std::string& p : {f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint, f.scene, f.preparation})
     fs::remove(p, ec);
   for (const std::string& d : {f.staging, f.dump}) {
     for (const auto& e : fs::directory_iterator(d, ec)) {

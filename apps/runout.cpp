@@ -1,6 +1,7 @@
 // runout: 2D soft-disc DEM of bidisperse granular avalanches (SPEC.md). Command line.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 
 #include "render_cli.hpp"
@@ -64,6 +65,18 @@ int main(int argc, char** argv) {
   accuracy_cmd->add_option("--set", study.overrides, "override a scene key")->take_all();
   accuracy_cmd->add_option("--cache-dir", study.cache_dir, "settled-pile cache (default ~/.cache/runout)");
 
+  runout::app::SweepOptions sweep;
+  auto* sweep_cmd = cli.add_subcommand("sweep", "run a scene over axes (D/d, %A_p, seed, any key): sweep SWEEP.toml --out DIR");
+  sweep_cmd->add_option("sweep", sweep.sweep_path, "sweep file (TOML)")->required()->check(CLI::ExistingFile);
+  sweep_cmd->add_option("--out,-o", sweep.out_dir, "output folder (cases in DIR/cases/NAME)")->required();
+  sweep_cmd->add_option("--jobs,-j", sweep.jobs, "cases side by side")->check(CLI::Range(1, 1024));
+  sweep_cmd->add_option("--threads-per-job", sweep.threads_per_job, "OpenMP threads per case")->check(CLI::Range(1, 256));
+  sweep_cmd->add_option("--case", sweep.one_case, "run only this case (index from 0, or its name)");
+  sweep_cmd->add_option("--emit", sweep.emit, "write DIR/sweep.sbatch (slurm) or DIR/jobs.txt (parallel) and stop")
+      ->check(CLI::IsMember({"slurm", "parallel"}));
+  sweep_cmd->add_flag("--gather", sweep.gather, "only collect DIR/results.csv and points.csv");
+  sweep_cmd->add_option("--cache-dir", sweep.cache_dir, "settled-pile cache (default ~/.cache/runout)");
+
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
@@ -93,6 +106,10 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return runout::app::bench_command(bench);
     if (*render_cmd) return runout::app::render_command(render);
     if (*study_cmd) return runout::app::study_command(study);
+    if (*sweep_cmd) {
+      sweep.self = std::filesystem::canonical("/proc/self/exe").string();  // the cases run this binary
+      return runout::app::sweep_command(sweep);
+    }
     if (*compare_cmd) return runout::app::compare_command(compare);
   } catch (const runout::UsageError& e) {
     std::fprintf(stderr, "runout: error: %s\n", e.what());
