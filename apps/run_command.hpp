@@ -65,6 +65,14 @@ struct SweepOptions {
   std::string cache_dir;
   std::string self;          // this binary, for the cases it starts
 };
+struct PlotOptions {
+  std::string dir;   // a sweep folder
+  std::string out;   // default DIR/figures
+  std::string self;  // this binary: the script is found beside it
+};
+// `runout plot DIR` (plot_command.cpp): runs scripts/runout_plot.py (matplotlib) on a sweep.
+int plot_command(const PlotOptions& o);
+
 // `runout sweep` (sweep_command.cpp): one scene over axes, each case in DIR/cases/NAME, resumable.
 int sweep_command(const SweepOptions& o);
 

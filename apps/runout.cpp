@@ -77,6 +77,11 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("--gather", sweep.gather, "only collect DIR/results.csv and points.csv");
   sweep_cmd->add_option("--cache-dir", sweep.cache_dir, "settled-pile cache (default ~/.cache/runout)");
 
+  runout::app::PlotOptions plot;
+  auto* plot_cmd = cli.add_subcommand("plot", "the thesis's figures (PNG and PDF, matplotlib) from a sweep folder");
+  plot_cmd->add_option("dir", plot.dir, "sweep folder (with points.csv)")->required()->check(CLI::ExistingDirectory);
+  plot_cmd->add_option("--out,-o", plot.out, "folder for the figures (default DIR/figures)");
+
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
@@ -106,6 +111,10 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return runout::app::bench_command(bench);
     if (*render_cmd) return runout::app::render_command(render);
     if (*study_cmd) return runout::app::study_command(study);
+    if (*plot_cmd) {
+      plot.self = std::filesystem::canonical("/proc/self/exe").string();
+      return runout::app::plot_command(plot);
+    }
     if (*sweep_cmd) {
       sweep.self = std::filesystem::canonical("/proc/self/exe").string();  // the cases run this binary
       return runout::app::sweep_command(sweep);

@@ -157,7 +157,9 @@ Gathered gather(const Sweep& s, const std::string& out) {
     for (const auto& [axis, value] : cases[r]->axes) line += "," + value;
     for (const auto& k : columns) {
       const auto it = rows[r].find(k);
-      (is_timing(k) ? t : line) += "," + (it == rows[r].end() ? std::string() : cell(it->second));
+      std::string& to = is_timing(k) ? t : line;
+      to += ',';
+      if (it != rows[r].end()) to += cell(it->second);
     }
     results += line + "\n";
     timings += t + "\n";
@@ -179,7 +181,10 @@ Gathered gather(const Sweep& s, const std::string& out) {
     groups[key].push_back(r);
   }
   std::string points;
-  for (std::size_t a = 0; a < point_axes.size(); ++a) points += (a ? "," : "") + point_axes[a];
+  for (std::size_t a = 0; a < point_axes.size(); ++a) {
+    if (a) points += ',';
+    points += point_axes[a];
+  }
   points += std::string(point_axes.empty() ? "" : ",") + "n";
   std::vector<std::string> numeric;
   for (const auto& k : columns)
@@ -189,7 +194,10 @@ Gathered gather(const Sweep& s, const std::string& out) {
   for (const auto& key : order) {
     const auto& members = groups[key];
     std::string line;
-    for (std::size_t a = 0; a < key.size(); ++a) line += (a ? "," : "") + key[a];
+    for (std::size_t a = 0; a < key.size(); ++a) {
+      if (a) line += ',';
+      line += key[a];
+    }
     line += std::string(key.empty() ? "" : ",") + std::to_string(members.size());
     for (const auto& k : numeric) {
       std::vector<double> v;
@@ -373,18 +381,28 @@ int sweep_command(const SweepOptions& o) {
     ++done;
     spent += secs;
     const std::string summary = case_dir(out, c) + "/summary.json";
-    std::string mu = "failed (see " + case_dir(out, c) + "/run.log)";
+    std::string mu;
     if (io::file_exists(summary)) {
       const auto j = nlohmann::json::parse(io::read_file(summary), nullptr, false);
-      mu = "mu_global = " + (j.is_object() && j["mu_global"].is_number() ? cell(j["mu_global"]).substr(0, 6) : std::string("null"));
+      mu = "mu_global = ";
+      mu += j.is_object() && j["mu_global"].is_number() ? cell(j["mu_global"]).substr(0, 6) : std::string("null");
     } else {
+      mu = "failed (see ";
+      mu += case_dir(out, c);
+      mu += "/run.log)";
       failed.push_back(c.name);
     }
     gather(s, out);
     const std::size_t left = todo.size() - done;
     const double eta = done ? spent / static_cast<double>(done) * static_cast<double>(left) / std::max(1, o.jobs) : 0;
+    std::string more;
+    if (left) {
+      more = ", about ";
+      more += duration(eta);
+      more += " more";
+    }
     std::fprintf(stderr, "  [%zu/%zu] %s  %s  %s; %zu left%s\n", done, todo.size(), c.name.c_str(), duration(secs).c_str(),
-                 mu.c_str(), left, left ? (", about " + duration(eta) + " more").c_str() : "");
+                 mu.c_str(), left, more.c_str());
   }
   const Gathered g = gather(s, out);
   std::fprintf(stderr, "runout: %zu of %zu cases complete; %s/results.csv, points.csv\n", g.complete,

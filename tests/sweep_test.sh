@@ -19,6 +19,20 @@ cache=(--cache-dir "$work/cache")
 grep -q "\[4/4\]" "$work/local.err" && grep -q "mu_global = " "$work/local.err" && ok || bad "progress lines: $(cat "$work/local.err")"
 grep -q '^30,2,' "$work/local/points.csv" && ok || bad "points.csv: $(head -2 "$work/local/points.csv" | cut -c1-80)"
 
+# runout plot: every figure as PNG and PDF; each PNG is read back by matplotlib's reader.
+"$bin" plot "$work/local" >"$work/plot.out" 2>"$work/plot.err" && ok || bad "runout plot: $(tail -3 "$work/plot.err")"
+[ "$(ls "$work/local/figures"/*.png 2>/dev/null | wc -l)" -eq 6 ] && [ "$(ls "$work/local/figures"/*.pdf 2>/dev/null | wc -l)" -eq 6 ] &&
+  ok || bad "figures: $(ls "$work/local/figures" 2>&1)"
+/usr/bin/python3 - "$work"/local/figures/*.png <<'PY' && ok || bad "a figure is not a readable PNG of a sensible size"
+import sys
+import matplotlib.image as im
+for p in sys.argv[1:]:
+    a = im.imread(p)
+    assert a.shape[0] > 300 and a.shape[1] > 500, (p, a.shape)
+    assert a[..., :3].std() > 0.05, (p, "blank")
+PY
+head -c 5 "$work/local/figures/fig4_1_mu_vs_share.pdf" | grep -q "%PDF-" && ok || bad "fig4_1 PDF"
+
 # Run again: every case is complete, nothing is run, results.csv is the same.
 cp "$work/local/results.csv" "$work/first.csv"
 "$bin" sweep "$sweep" --out "$work/local" "${cache[@]}" 2>"$work/again.err" && grep -q "0 to run" "$work/again.err" &&

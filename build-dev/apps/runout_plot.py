@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""The thesis's figures from a runout sweep (SPEC §7), with matplotlib.
+
+    runout plot DIR            (runs this script with Debian's /usr/bin/python3)
+    /usr/bin/python3 runout_plot.py DIR [--out FIGDIR]
+
+Reads DIR/points.csv, DIR/results.csv and each case's DIR/cases/NAME/timeseries.csv and writes
+PNG and PDF of: fig4_1 (mu against %A_p per D/d, the monodisperse value dashed), fig4_2 (%A_p,m
+against D/d with the bracket of its neighbouring shares), fig4_3 (E_k/Ep0 against t*), fig4_14
+(H_layer/d against %A_p), fig4_15 (mean heights above the bed of small and large discs against
+x_cm) and fig4_16 (basal spin against t*). One colour per D/d in every figure. Restyle freely:
+this file is installed with runout so that it can be copied and edited.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# Okabe–Ito, one per size ratio, the same in every figure.
+RATIO_COLOURS = {"2": "#0072B2", "3": "#009E73", "4": "#E69F00", "8.33": "#D55E00"}
+EXTRA = ["#CC79A7", "#56B4E9", "#F0E442", "#000000"]
+
+
+def colour(ratio, _seen={}):
+    if ratio in RATIO_COLOURS:
+        return RATIO_COLOURS[ratio]
+    return _seen.setdefault(ratio, EXTRA[len(_seen) % len(EXTRA)])
+
+
+def number(text):
+    try:
+        v = float(text)
+        return v if math.isfinite(v) else None
+    except (TypeError, ValueError):
+        return None
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def save(fig, out, name, written):
+    for ext in ("png", "pdf"):
+        path = os.path.join(out, f"{name}.{ext}")
+        tmp = path + ".tmp"
+        fig.savefig(tmp, dpi=150, bbox_inches="tight", format=ext)
+        os.replace(tmp, path)  # never a half-written figure
+        written.append(path)
+    plt.close(fig)
+
+
+def ratio_key(r):
+    return float(r) if number(r) is not None else math.inf
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir", help="a runout sweep folder (with points.csv)")
+    ap.add_argument("--out", help="where the figures go (default DIR/figures)")
+    a = ap.parse_args()
+    points_path = os.path.join(a.dir, "points.csv")
+    if not os.path.exists(points_path):
+        sys.exit(f"runout plot: {points_path} not found: run `runout sweep SWEEP --out {a.dir}` first")
+    out = a.out or os.path.join(a.dir, "figures")
+    os.makedirs(out, exist_ok=True)
+    points = read_csv(points_path)
+    results = read_csv(os.path.join(a.dir, "results.csv"))
+    if not points or "small_share" not in points[0]:
+        sys.exit("runout plot: the sweep has no small_share axis: the thesis's figures are against %A_p")
+    has_ratio = "ratio" in points[0]
+    written = []
+    plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3, "figure.figsize": (6.0, 4.0)})
+
+    by_ratio = defaultdict(list)
+    for p in points:
+        by_ratio[p["ratio"] if has_ratio else "—"].append(p)
+    ratios = sorted(by_ratio, key=ratio_key)
+
+    def series(rows, col):
+        xs, ys, es = [], [], []
+        for p in sorted(rows, key=lambda p: float(p["small_share"])):
+            y = number(p.get(col + "_mean"))
+            if y is None:
+                continue
+            xs.append(float(p["small_share"]))
+            ys.append(y)
+            e = number(p.get(col + "_2se"))
+            es.append(e if e is not None else 0.0)
+        return xs, ys, es
+
+    # Fig. 4.1: mu = H_cm / L_cm against %A_p.
+    fig, ax = plt.subplots()
+    mono = [number(p["mu_global_mean"]) for p in points if float(p["small_share"]) in (0.0, 100.0)]
+    mono = [m for m in mono if m is not None]
+    for r in ratios:
+        xs, ys, es = series(by_ratio[r], "mu_global")
+        ax.errorbar(xs, ys, yerr=es, marker="o", ms=4, capsize=3, color=colour(r),
+                    label=f"D/d = {r}" if has_ratio else "this sweep")
+    if mono:
+        ax.axhline(sum(mono) / len(mono), ls="--", color="0.4", lw=1, label="monodisperse (mean)")
+    ax.set_xlabel("share of small discs %A_p (% of the disc area)")
+    ax.set_ylabel("global friction μ = H_cm / L_cm")
+    ax.set_title("Fig. 4.1: friction against the share of small discs (±2 SE over seeds)")
+    ax.legend(fontsize=8)
+    save(fig, out, "fig4_1_mu_vs_share", written)
+
+    # Fig. 4.2: %A_p,m (the share of the lowest mean mu) with its bracket.
+    fig, ax = plt.subplots()
+    for r in ratios:
+        xs, ys, _ = series(by_ratio[r], "mu_global")
+        if len(xs) < 2 or number(r) is None:
+            continue
+        k = min(range(len(ys)), key=lambda i: ys[i])
+        lo = xs[k - 1] if k > 0 else xs[k]
+        hi = xs[k + 1] if k + 1 < len(xs) else xs[k]
+        ax.errorbar([float(r)], [xs[k]], yerr=[[xs[k] - lo], [hi - xs[k]]], marker="s", ms=6, capsize=4,
+                    color=colour(r), label=f"D/d = {r}: {xs[k]:g} % ({lo:g}–{hi:g})")
+    ax.set_xlabel("size ratio D/d")
+    ax.set_ylabel("%A_p,m (share of the lowest μ)")
+    ax.set_title("Fig. 4.2: the share of least friction, bracketed by its neighbours")
+    ax.legend(fontsize=8)
+    save(fig, out, "fig4_2_share_min_vs_ratio", written)
+
+    # Fig. 4.14: basal layer thickness.
+    fig, ax = plt.subplots()
+    for r in ratios:
+        xs, ys, es = series(by_ratio[r], "H_layer_over_d")
+        ax.errorbar(xs, ys, yerr=es, marker="o", ms=4, capsize=3, color=colour(r), label=f"D/d = {r}")
+    ax.set_xlabel("share of small discs %A_p (%)")
+    ax.set_ylabel("basal layer thickness H_layer / d")
+    ax.set_title("Fig. 4.14: the basal layer of small discs")
+    ax.legend(fontsize=8)
+    save(fig, out, "fig4_14_layer_vs_share", written)
+
+    # Time series of one seed per point (the lowest), one panel per D/d.
+    cases = defaultdict(list)
+    for row in results:
+        cases[row.get("ratio", "—")].append(row)
+
+    def first_seed(rows):
+        best = {}
+        for row in rows:
+            s = row["small_share"]
+            seed = number(row.get("seed", "0")) or 0
+            if s not in best or seed < best[s][0]:
+                best[s] = (seed, row)
+        return [best[s][1] for s in sorted(best, key=float)]
+
+    def panels(title, name, ycol, ylabel, xcol="t_star", xlabel="t*", logy=False):
+        fig, axes = plt.subplots(1, len(ratios), figsize=(4.0 * len(ratios), 3.4), squeeze=False, sharey=True)
+        for ax, r in zip(axes[0], ratios):
+            rows = first_seed(cases.get(r, []))
+            shades = plt.cm.viridis([i / max(1, len(rows) - 1) for i in range(len(rows))])
+            for row, shade in zip(rows, shades):
+                path = os.path.join(a.dir, "cases", row["case"], "timeseries.csv")
+                if not os.path.exists(path):
+                    continue
+                ts = read_csv(path)
+                xs = [number(t.get(xcol)) for t in ts]
+                ys = [number(t.get(ycol)) for t in ts]
+                pts = [(x, y) for x, y in zip(xs, ys) if x is not None and y is not None and (not logy or y > 0)]
+                if pts:
+                    ax.plot(*zip(*pts), color=shade, lw=1, label=f"{float(row['small_share']):g} %")
+            ax.set_title(f"D/d = {r}", color=colour(r))
+            ax.set_xlabel(xlabel)
+            if logy:
+                ax.set_yscale("log")
+            ax.legend(fontsize=7, title="%A_p", title_fontsize=7)
+        axes[0][0].set_ylabel(ylabel)
+        fig.suptitle(title)
+        save(fig, out, name, written)
+
+    panels("Figs. 4.3–4.6: kinetic energy", "fig4_3_ek_vs_t", "ek_over_ep0", "E_k / Ep0", logy=True)
+    panels("Figs. 4.16–4.19: spin of the small discs on the bed", "fig4_16_spin_vs_t", "basal_spin",
+           "basal spin ω √(d/g)")
+
+    # Fig. 4.15: mean height above the bed of small and large discs, and their difference.
+    fig, axes = plt.subplots(1, len(ratios), figsize=(4.0 * len(ratios), 3.4), squeeze=False, sharey=True)
+    for ax, r in zip(axes[0], ratios):
+        rows = [row for row in first_seed(cases.get(r, [])) if 0 < float(row["small_share"]) < 100]
+        for row in rows[-1:]:  # the largest share with both species
+            ts = read_csv(os.path.join(a.dir, "cases", row["case"], "timeseries.csv"))
+            x = [number(t["x_cm"]) for t in ts]
+            s = [number(t.get("small_mean_height")) for t in ts]
+            l = [number(t.get("large_mean_height")) for t in ts]
+            keep = [i for i in range(len(ts)) if None not in (x[i], s[i], l[i])]
+            if not keep:
+                continue
+            xs = [x[i] for i in keep]
+            ax.plot(xs, [s[i] for i in keep], color=colour(r), ls="-", label="small")
+            ax.plot(xs, [l[i] for i in keep], color=colour(r), ls="--", label="large")
+            ax.plot(xs, [l[i] - s[i] for i in keep], color="0.3", ls=":", label="large − small")
+            ax.set_title(f"D/d = {r}, %A_p = {float(row['small_share']):g}", color=colour(r))
+        ax.set_xlabel("x_cm / d")
+        ax.legend(fontsize=7)
+    axes[0][0].set_ylabel("mean height above the bed / d")
+    fig.suptitle("Fig. 4.15: segregation along the run-out")
+    save(fig, out, "fig4_15_heights_vs_xcm", written)
+
+    for path in written:
+        print(path)
+
+
+if __name__ == "__main__":
+    main()

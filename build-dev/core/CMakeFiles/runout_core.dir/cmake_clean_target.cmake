@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "librunout_core.a"
+)
