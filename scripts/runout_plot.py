@@ -158,7 +158,7 @@ def main():
         fig, axes = plt.subplots(1, len(ratios), figsize=(4.0 * len(ratios), 3.4), squeeze=False, sharey=True)
         for ax, r in zip(axes[0], ratios):
             rows = first_seed(cases.get(r, []))
-            shades = plt.cm.viridis([i / max(1, len(rows) - 1) for i in range(len(rows))])
+            shades = plt.cm.viridis([0.85 * i / max(1, len(rows) - 1) for i in range(len(rows))])
             for row, shade in zip(rows, shades):
                 path = os.path.join(a.dir, "cases", row["case"], "timeseries.csv")
                 if not os.path.exists(path):
@@ -173,9 +173,10 @@ def main():
             ax.set_xlabel(xlabel)
             if logy:
                 ax.set_yscale("log")
+                ax.set_ylim(bottom=1e-6)  # the pile at rest before release is 1e-18: not the story
             ax.legend(fontsize=7, title="%A_p", title_fontsize=7)
         axes[0][0].set_ylabel(ylabel)
-        fig.suptitle(title)
+        fig.suptitle(title, y=1.03)
         save(fig, out, name, written)
 
     panels("Figs. 4.3–4.6: kinetic energy", "fig4_3_ek_vs_t", "ek_over_ep0", "E_k / Ep0", logy=True)
@@ -202,7 +203,7 @@ def main():
         ax.set_xlabel("x_cm / d")
         ax.legend(fontsize=7)
     axes[0][0].set_ylabel("mean height above the bed / d")
-    fig.suptitle("Fig. 4.15: segregation along the run-out")
+    fig.suptitle("Fig. 4.15: segregation along the run-out", y=1.03)
     save(fig, out, "fig4_15_heights_vs_xcm", written)
 
     for path in written:
