@@ -77,8 +77,5 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
                  long long frames, long long steps_between) {
   return pictures().bench(world, scene, setup, o, frames, steps_between);
 }
-void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path) {
-  pictures().plot(points, title, path);
-}
 
 }  // namespace runout::app

@@ -21,7 +21,6 @@ struct PictureApi {
   decltype(&compare_command) compare = nullptr;
   decltype(&attach_pictures) attach = nullptr;
   decltype(&bench_frames) bench = nullptr;
-  decltype(&plot_study) plot = nullptr;
 };
 
 inline PictureApi expected_picture_api_layout(const char* build_stamp) {

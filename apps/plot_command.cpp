@@ -1,7 +1,10 @@
 // `runout plot DIR`: the thesis's figures from a sweep, drawn by matplotlib (scripts/runout_plot.py,
 // installed beside runout) — the plotting library researchers know and can restyle, instead of
 // axes drawn by hand.
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <cstdio>
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,21 +31,36 @@ std::string find_script(const std::string& self) {
 
 }  // namespace
 
-int plot_command(const PlotOptions& o) {
-  if (!fs::exists(fs::path(o.dir) / "points.csv"))
-    throw UsageError("runout plot: " + o.dir + "/points.csv not found: run `runout sweep SWEEP --out " + o.dir + "` first");
-  const std::string script = find_script(o.self);
+int run_plot_script(const std::string& self, const std::vector<std::string>& script_args) {
+  const std::string script = find_script(self);
   // Debian's interpreter sees Debian's python3-matplotlib; another python3 on PATH may not.
   std::string python = "/usr/bin/python3";
   if (const char* p = std::getenv("RUNOUT_PYTHON"); p && *p) python = p;
   else if (!fs::exists(python)) python = "python3";
-  std::vector<std::string> args = {python, script, o.dir};
+  std::vector<std::string> args = {python, script};
+  args.insert(args.end(), script_args.begin(), script_args.end());
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw IoError("runout plot: cannot start " + python);
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execvp(python.c_str(), argv.data());
+    std::fprintf(stderr, "runout plot: cannot run %s (install python3-matplotlib)\n", python.c_str());
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+int plot_command(const PlotOptions& o) {
+  if (!fs::exists(fs::path(o.dir) / "points.csv"))
+    throw UsageError("runout plot: " + o.dir + "/points.csv not found: run `runout sweep SWEEP --out " + o.dir + "` first");
+  std::vector<std::string> args = {o.dir};
   if (!o.out.empty()) { args.push_back("--out"); args.push_back(o.out); }
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ::execvp(python.c_str(), argv.data());
-  throw IoError("runout plot: cannot run " + python + " (install python3-matplotlib)");
+  return run_plot_script(o.self, args);
 }
 
 }  // namespace runout::app

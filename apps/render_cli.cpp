@@ -160,67 +160,6 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
   return 0;
 }
 
-void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path) {
-  const int W = 1200, H = 640, left = 90, right = 330, top = 60, bottom = 70;
-  render::Image img(W, H);
-  render::TextRenderer text;
-  const render::Rgba ink{30, 30, 30, 255}, grid{225, 225, 225, 255}, bar{120, 120, 120, 255};
-  const auto noise_of = [](const StudyPoint& p) { return std::isfinite(p.noise) ? p.noise : 0.0; };
-  double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
-  for (const auto& p : points) {
-    if (!(p.seconds_per_t_star > 0)) throw std::invalid_argument("a study point has no positive cost");
-    x0 = std::min(x0, p.seconds_per_t_star); x1 = std::max(x1, p.seconds_per_t_star);
-    for (double y : {p.mu_error, p.mu_error + noise_of(p)})
-      if (y > 0) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
-  }
-  if (y1 <= 0) { y0 = 1e-4; y1 = 1e-1; }
-  const double lx0 = std::floor(std::log10(x0) - 0.15), lx1 = std::ceil(std::log10(x1) + 1e-9);
-  const double ly0 = std::floor(std::log10(y0) - 0.3), ly1 = std::ceil(std::log10(y1) + 1e-9);
-  auto px = [&](double x) { return left + (std::log10(x) - lx0) / std::max(lx1 - lx0, 1.0) * (W - left - right); };
-  auto py = [&](double y) {
-    if (!(y > 0)) return double(H - bottom - 4);  // zero: drawn on the axis
-    return std::max(double(top), H - bottom - (std::log10(y) - ly0) / std::max(ly1 - ly0, 1.0) * (H - top - bottom));
-  };
-  for (double d = lx0; d <= lx1; ++d) {
-    const int x = static_cast<int>(px(std::pow(10, d)));
-    img.fill_rect(x, top, x + 1, H - bottom, grid);
-    char l[16]; std::snprintf(l, sizeof l, "%g", std::pow(10, d));
-    text.draw(img, x - text.width(l, 14) / 2, H - bottom + 20, l, 14, ink);
-  }
-  for (double d = ly0; d <= ly1; ++d) {
-    const int y = static_cast<int>(py(std::pow(10, d)));
-    img.fill_rect(left, y, W - right, y + 1, grid);
-    char l[16]; std::snprintf(l, sizeof l, "%g", std::pow(10, d));
-    text.draw(img, left - 8 - text.width(l, 14), y + 5, l, 14, ink);
-  }
-  img.fill_rect(left, H - bottom, W - right, H - bottom + 2, ink);
-  img.fill_rect(left - 2, top, left, H - bottom, ink);
-  text.draw(img, (W - text.width(title, 18)) / 2, 28, title, 18, ink);
-  const std::string xl = "wall seconds per t* of flow (runs end at different t*), mean over the piles";
-  const std::string yl = "|mean mu - mean mu of the reference|; bars: +- 2 standard errors (0 on the axis)";
-  text.draw(img, left + ((W - left - right) - text.width(xl, 15)) / 2, H - 20, xl, 15, ink);
-  text.draw(img, left, top - 10, yl, 13, ink);
-  // Points numbered on the plot, named in a legend on the right: labels never collide.
-  int number = 0;
-  for (const auto& p : points) {
-    ++number;
-    const double cx = px(p.seconds_per_t_star), cy = py(p.mu_error);
-    const double n = noise_of(p);
-    if (n > 0) {
-      const int ya = static_cast<int>(py(p.mu_error + n)), yb = static_cast<int>(p.mu_error - n > 0 ? py(p.mu_error - n) : H - bottom);
-      img.fill_rect(static_cast<int>(cx), ya, static_cast<int>(cx) + 1, yb, bar);
-      img.fill_rect(static_cast<int>(cx) - 4, ya, static_cast<int>(cx) + 5, ya + 1, bar);
-    }
-    for (int y = static_cast<int>(cy) - 6; y <= cy + 6; ++y)
-      for (int x = static_cast<int>(cx) - 6; x <= cx + 6; ++x)
-        img.blend(x, y, render::palette::kLarge, std::clamp(5.0 - std::hypot(x + 0.5 - cx, y + 0.5 - cy) + 0.5, 0.0, 1.0));
-    const std::string tag = std::to_string(number);
-    text.draw(img, static_cast<int>(cx) + 8, static_cast<int>(cy) - 4, tag, 13, ink);
-    text.draw(img, W - right + 16, top + 10 + 20 * number, tag + "  " + p.label, 13, ink);
-  }
-  render::write_png(path, img);
-}
-
 int compare_command(const CompareOptions& o) {
   // Exit codes: 0 match, 1 no match, 2 bad input (an unreadable PNG, a --diff that cannot be
   // written) — the last checked before anything is compared, so 1 always means "differ".
@@ -275,7 +214,6 @@ extern "C" __attribute__((visibility("default"))) const runout::app::PictureApi*
     a.compare = &compare_command;
     a.attach = &attach_pictures;
     a.bench = &bench_frames;
-    a.plot = &plot_study;
     return a;
   }();
   return &api;

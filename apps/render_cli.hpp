@@ -77,15 +77,4 @@ std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, Avalanc
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between);
 
-// One variant of the accuracy study, for its plot: cost against error.
-struct StudyPoint {
-  std::string label;
-  double seconds_per_t_star = 0;  // wall time per t* of flow, mean over its piles
-  double mu_error = 0;      // |mean mu - mean mu of the reference|
-  double noise = 0;         // two standard errors of that difference (NaN: one pile)
-};
-// Log-log scatter of wall seconds per t* against |delta mu| with the noise as an error bar,
-// numbered, with a legend, as a PNG.
-void plot_study(const std::vector<StudyPoint>& points, const std::string& title, const std::string& path);
-
 }  // namespace runout::app

@@ -72,6 +72,8 @@ struct PlotOptions {
 };
 // `runout plot DIR` (plot_command.cpp): runs scripts/runout_plot.py (matplotlib) on a sweep.
 int plot_command(const PlotOptions& o);
+// Runs scripts/runout_plot.py (found beside `self`) with these arguments; its exit code.
+int run_plot_script(const std::string& self, const std::vector<std::string>& script_args);
 
 // `runout sweep` (sweep_command.cpp): one scene over axes, each case in DIR/cases/NAME, resumable.
 int sweep_command(const SweepOptions& o);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -274,7 +275,6 @@ int study_command(const StudyOptions& o) {
       "| knob | setting | runs | steps | wall s | s per t* | M particle-steps/s | mu mean ± sd | abs. mean difference to reference | 2 s.e. | "
       "L_cm rel. error | front rel. error | max overlap / r | residual / Ep0 |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<StudyPoint> points;
   char line[1024];
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const Variant& v = variants[k];
@@ -298,13 +298,14 @@ int study_command(const StudyOptions& o) {
                   s.steps, s.wall, s.seconds_per_t_star, s.rate / 1e6, s.mu, s.mu_sd, error, noise, L_error, front_error,
                   s.max_overlap, s.residual);
     md += line;
-    points.push_back({v.family == "reference" ? "reference" : v.family + " " + v.setting, s.seconds_per_t_star, error, noise});
   }
   io::write_file_atomically(o.out_dir + "/study.csv", csv);
   io::write_file_atomically(o.out_dir + "/study.md", md);
+  // The plot (study.png, study.pdf) is matplotlib's, from study.csv (scripts/runout_plot.py).
   try {
-    plot_study(points, "speed against accuracy: " + base.name + " (" + std::to_string(o.seeds) + " piles)",
-               o.out_dir + "/study.png");
+    const std::string title = "speed against accuracy: " + base.name + " (" + std::to_string(o.seeds) + " piles)";
+    if (run_plot_script(std::filesystem::canonical("/proc/self/exe").string(), {"--study", o.out_dir, "--title", title}) != 0)
+      std::fprintf(stderr, "runout study: no plot (runout_plot.py failed)\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "runout study: no plot (%s)\n", e.what());
   }

@@ -22,6 +22,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 # Okabe–Ito, one per size ratio, the same in every figure.
 RATIO_COLOURS = {"2": "#0072B2", "3": "#009E73", "4": "#E69F00", "8.33": "#D55E00"}
@@ -61,11 +62,46 @@ def ratio_key(r):
     return float(r) if number(r) is not None else math.inf
 
 
+def study(folder, title):
+    """`runout study accuracy`'s plot: wall seconds per t* against |delta mu| to the reference,
+    log-log, two standard errors as bars, each variant numbered and named in the legend."""
+    rows = [r for r in read_csv(os.path.join(folder, "study.csv")) if number(r.get("seconds_per_t_star"))]
+    fig, ax = plt.subplots(figsize=(9.0, 4.8))
+    for k, r in enumerate(rows, 1):
+        x = number(r["seconds_per_t_star"])
+        y = number(r["mu_error"]) or 0.0
+        e = number(r["mu_noise_2se"]) or 0.0
+        label = "reference" if r["family"] == "reference" else f"{r['family']} {r['setting']}"
+        # A zero error (the reference itself) sits on the axis, at the bottom of its bar.
+        shown = y if y > 0 else max(e, 1e-4) / 10
+        # On a log axis a bar down to zero has no end: it stops at a tenth of the point.
+        ax.errorbar([x], [shown], yerr=[[min(e, shown * 0.9)], [e]], fmt="o", ms=6, capsize=3,
+                    color="#0072B2" if r["family"] != "reference" else "#D55E00", label=f"{k}  {label}")
+        ax.annotate(str(k), (x, shown), textcoords="offset points", xytext=(6, 4), fontsize=8)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.LogFormatter(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
+    ax.set_xlabel("wall seconds per t* of flow (mean over the piles)")
+    ax.set_ylabel("|mean μ − mean μ of the reference|")
+    ax.set_title(title)
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5), title="variant (bars: ±2 SE)",
+              title_fontsize=7)
+    written = []
+    save(fig, folder, "study", written)
+    for path in written:
+        print(path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("dir", help="a runout sweep folder (with points.csv)")
+    ap.add_argument("dir", help="a runout sweep folder (with points.csv), or a study folder with --study")
     ap.add_argument("--out", help="where the figures go (default DIR/figures)")
+    ap.add_argument("--study", action="store_true", help="DIR is a `runout study accuracy` folder: draw study.png/pdf")
+    ap.add_argument("--title", default="speed against accuracy")
     a = ap.parse_args()
+    plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3})
+    if a.study:
+        return study(a.dir, a.title)
     points_path = os.path.join(a.dir, "points.csv")
     if not os.path.exists(points_path):
         sys.exit(f"runout plot: {points_path} not found: run `runout sweep SWEEP --out {a.dir}` first")
