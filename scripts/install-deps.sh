@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
   clang libclang-rt-14-dev libomp-dev
-  parallel slurm-wlm munge
+  parallel slurm-wlm munge chromium
   pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
 )

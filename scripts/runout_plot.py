@@ -242,8 +242,63 @@ def main():
     fig.suptitle("Fig. 4.15: segregation along the run-out", y=1.03)
     save(fig, out, "fig4_15_heights_vs_xcm", written)
 
+    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")])
     for path in written:
         print(path)
+
+
+def report(folder, figures, points, results, pngs):
+    """DIR/report.html: one page, readable offline (no fetches), with the table of points, every
+    figure, and links to each case's files. Its script puts "images: LOADED/TOTAL" in the title
+    once the page has loaded, which the test reads from headless Chromium."""
+    import html
+
+    rel = os.path.relpath(figures, folder)
+    cols = [c for c in ("ratio", "small_share", "n", "mu_global_mean", "mu_global_2se", "peak_ek_over_ep0_mean",
+                        "H_layer_over_d_mean", "final_basal_spin_mean") if points and c in points[0]]
+
+    def fmt(v):
+        x = number(v)
+        return "" if x is None else (f"{x:.4g}" if not float(x).is_integer() else f"{x:g}")
+
+    rows = "".join("<tr>" + "".join(f"<td>{html.escape(fmt(p[c]))}</td>" for c in cols) + "</tr>\n" for p in points)
+    cases = "".join(
+        f'<li><a href="cases/{html.escape(r["case"])}/summary.json">{html.escape(r["case"])}</a> '
+        f'(<a href="cases/{html.escape(r["case"])}/timeseries.csv">time series</a>, '
+        f'<a href="cases/{html.escape(r["case"])}/scene.resolved.toml">scene</a>): mu = {html.escape(fmt(r.get("mu_global")))}</li>\n'
+        for r in results)
+    images = "".join(f'<figure><img src="{html.escape(os.path.join(rel, os.path.basename(p)))}" alt="{html.escape(os.path.basename(p))}">'
+                     f'<figcaption><a href="{html.escape(os.path.join(rel, os.path.basename(p)[:-4]))}.pdf">PDF</a></figcaption></figure>\n'
+                     for p in pngs)
+    page = f"""<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>runout sweep</title>
+<style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}}
+.wide{{overflow-x:auto}}table{{border-collapse:collapse;font-size:13px}}
+td,th{{border:1px solid #ccc;padding:2px 8px;text-align:right}}
+img{{max-width:100%}}figure{{margin:1em 0}}</style></head><body>
+<h1>runout sweep: {html.escape(os.path.basename(os.path.abspath(folder)))}</h1>
+<p>{len(results)} cases; points are cases that differ only in seed (mean, ±2 standard errors). Files:
+<a href="results.csv">results.csv</a>, <a href="points.csv">points.csv</a>, <a href="timings.csv">timings.csv</a>,
+<a href="sweep.toml">sweep.toml</a>.</p>
+<div class="wide"><table><tr>{"".join(f"<th>{html.escape(c)}</th>" for c in cols)}</tr>
+{rows}</table></div>
+<h2>Figures</h2>
+{images}<h2>Cases</h2><ul>
+{cases}</ul>
+<script>
+window.addEventListener("load", function () {{
+  var all = document.images, ok = 0;
+  for (var i = 0; i < all.length; i++) if (all[i].complete && all[i].naturalWidth > 0) ok++;
+  document.title = "images: " + ok + "/" + all.length;
+}});
+</script>
+</body></html>
+"""
+    path = os.path.join(folder, "report.html")
+    with open(path + ".tmp", "w") as f:
+        f.write(page)
+    os.replace(path + ".tmp", path)
+    print(path)
 
 
 if __name__ == "__main__":

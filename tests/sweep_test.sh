@@ -32,6 +32,18 @@ for p in sys.argv[1:]:
     assert a[..., :3].std() > 0.05, (p, "blank")
 PY
 head -c 5 "$work/local/figures/fig4_1_mu_vs_share.pdf" | grep -q "%PDF-" && ok || bad "fig4_1 PDF"
+# The report: headless Chromium loads it from disk (no network), its script counts the images
+# that loaded, and a screenshot is taken.
+if command -v chromium >/dev/null; then
+  title=$(timeout 120 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 --dump-dom \
+          "file://$work/local/report.html" 2>/dev/null | grep -o "<title>[^<]*</title>")
+  [ "$title" = "<title>images: 6/6</title>" ] && ok || bad "report.html in Chromium: $title (want images: 6/6)"
+  timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1200,1600 \
+    --screenshot="$work/report.png" "file://$work/local/report.html" >/dev/null 2>&1
+  [ "$(stat -c %s "$work/report.png" 2>/dev/null || echo 0)" -gt 20000 ] && ok || bad "no screenshot of report.html"
+else
+  bad "chromium not installed (scripts/install-deps.sh installs it): report.html not checked"
+fi
 
 # Run again: every case is complete, nothing is run, results.csv is the same.
 cp "$work/local/results.csv" "$work/first.csv"
