@@ -148,15 +148,18 @@ def main():
     ax.legend(fontsize=8)
     save(fig, out, "fig4_1_mu_vs_share", written)
 
-    # Fig. 4.2: %A_p,m (the share of the lowest mean mu) with its bracket.
+    # Fig. 4.2: %A_p,m (the share of the lowest mean mu) with its bracket, also as DIR/minimum.csv.
     fig, ax = plt.subplots()
+    minima = ["ratio,share_min,bracket_low,bracket_high,mu_min_mean,mu_min_2se,at_edge"]
     for r in ratios:
-        xs, ys, _ = series(by_ratio[r], "mu_global")
+        xs, ys, es = series(by_ratio[r], "mu_global")
         if len(xs) < 2 or number(r) is None:
             continue
         k = min(range(len(ys)), key=lambda i: ys[i])
         lo = xs[k - 1] if k > 0 else xs[k]
         hi = xs[k + 1] if k + 1 < len(xs) else xs[k]
+        # At the first or last share sampled the minimum may lie beyond it: said, not hidden.
+        minima.append(f"{r},{xs[k]:g},{lo:g},{hi:g},{ys[k]:.6g},{es[k]:.6g},{int(k in (0, len(xs) - 1))}")
         ax.errorbar([float(r)], [xs[k]], yerr=[[xs[k] - lo], [hi - xs[k]]], marker="s", ms=6, capsize=4,
                     color=colour(r), label=f"D/d = {r}: {xs[k]:g} % ({lo:g}–{hi:g})")
     ax.set_xlabel("size ratio D/d")
@@ -164,6 +167,10 @@ def main():
     ax.set_title("Fig. 4.2: the share of least friction, bracketed by its neighbours")
     ax.legend(fontsize=8)
     save(fig, out, "fig4_2_share_min_vs_ratio", written)
+    with open(os.path.join(a.dir, "minimum.csv.tmp"), "w") as f:
+        f.write("\n".join(minima) + "\n")
+    os.replace(os.path.join(a.dir, "minimum.csv.tmp"), os.path.join(a.dir, "minimum.csv"))
+    written.append(os.path.join(a.dir, "minimum.csv"))
 
     # Fig. 4.14: basal layer thickness.
     fig, ax = plt.subplots()
@@ -242,12 +249,12 @@ def main():
     fig.suptitle("Fig. 4.15: segregation along the run-out", y=1.03)
     save(fig, out, "fig4_15_heights_vs_xcm", written)
 
-    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")])
+    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima)
     for path in written:
         print(path)
 
 
-def report(folder, figures, points, results, pngs):
+def report(folder, figures, points, results, pngs, minima):
     """DIR/report.html: one page, readable offline (no fetches), with the table of points, every
     figure, and links to each case's files. Its script puts "images: LOADED/TOTAL" in the title
     once the page has loaded, which the test reads from headless Chromium."""
@@ -270,6 +277,12 @@ def report(folder, figures, points, results, pngs):
     images = "".join(f'<figure><img src="{html.escape(os.path.join(rel, os.path.basename(p)))}" alt="{html.escape(os.path.basename(p))}">'
                      f'<figcaption><a href="{html.escape(os.path.join(rel, os.path.basename(p)[:-4]))}.pdf">PDF</a></figcaption></figure>\n'
                      for p in pngs)
+    head, *body = [line.split(",") for line in minima]
+    minimum = ("<h2>Share of least friction %A_p,m</h2><div class=\"wide\"><table><tr>" +
+               "".join(f"<th>{html.escape(c)}</th>" for c in head) + "</tr>" +
+               "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>" for row in body) +
+               "</table></div><p>at_edge = 1: the lowest mu is at the first or last share sampled, so the "
+               "minimum may lie beyond it.</p>") if body else ""
     page = f"""<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>runout sweep</title>
 <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}}
@@ -279,9 +292,10 @@ img{{max-width:100%}}figure{{margin:1em 0}}</style></head><body>
 <h1>runout sweep: {html.escape(os.path.basename(os.path.abspath(folder)))}</h1>
 <p>{len(results)} cases; points are cases that differ only in seed (mean, ±2 standard errors). Files:
 <a href="results.csv">results.csv</a>, <a href="points.csv">points.csv</a>, <a href="timings.csv">timings.csv</a>,
-<a href="sweep.toml">sweep.toml</a>.</p>
+<a href="sweep.toml">sweep.toml</a>, <a href="minimum.csv">minimum.csv</a>.</p>
 <div class="wide"><table><tr>{"".join(f"<th>{html.escape(c)}</th>" for c in cols)}</tr>
 {rows}</table></div>
+{minimum}
 <h2>Figures</h2>
 {images}<h2>Cases</h2><ul>
 {cases}</ul>
