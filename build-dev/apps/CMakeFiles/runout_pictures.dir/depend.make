@@ -1,2 +1,0 @@
-# Empty dependencies file for runout_pictures.
-# This may be replaced when dependencies are built.

@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "librunout_io.a"
-)
