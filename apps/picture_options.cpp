@@ -61,7 +61,7 @@ std::array<double, 4> parse_window(const std::string& text) {
   return v;
 }
 
-std::vector<double> parse_times(const std::string& list) {
+std::vector<double> parse_times(const std::string& list, const std::string& option) {
   std::vector<double> out;
   std::stringstream ss(list);
   for (std::string item; std::getline(ss, item, ',');) {
@@ -73,7 +73,7 @@ std::vector<double> parse_times(const std::string& list) {
       used = 0;
     }
     if (used == 0 || used != item.size() || !std::isfinite(v) || v < 0)
-      throw UsageError("--snapshots: \"" + item + "\" is not a time t* >= 0");
+      throw UsageError(option + ": \"" + item + "\" is not a time t* >= 0");
     out.push_back(v);
   }
   std::sort(out.begin(), out.end());

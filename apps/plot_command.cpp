@@ -58,8 +58,13 @@ int run_plot_script(const std::string& self, const std::vector<std::string>& scr
 int plot_command(const PlotOptions& o) {
   if (!fs::exists(fs::path(o.dir) / "points.csv"))
     throw UsageError("runout plot: " + o.dir + "/points.csv not found: run `runout sweep SWEEP --out " + o.dir + "` first");
-  std::vector<std::string> args = {o.dir};
-  if (!o.out.empty()) { args.push_back("--out"); args.push_back(o.out); }
+  const std::string figures = o.out.empty() ? o.dir + "/figures" : o.out;
+  if (o.frames) {
+    // The pictures of the study come first: the script lays them out and puts them in the report.
+    const int n = render_study_frames(o.dir, figures + "/frames");
+    std::fprintf(stderr, "runout plot: %d study frames drawn in %s/frames\n", n, figures.c_str());
+  }
+  std::vector<std::string> args = {o.dir, "--out", figures};
   return run_plot_script(o.self, args);
 }
 

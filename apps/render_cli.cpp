@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "picture_module.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
@@ -109,8 +111,24 @@ int render_command(const RenderOptions& o) {
   decode_checkpoint(bytes, io::physics_key(scene), world, o.checkpoint);
   const double t_star = world.time() / setup.unit_time;
   render::FrameMaker maker(frame_options(o.picture), scene, setup);
-  render::write_png(o.output, maker.make(world, t_star), o.picture.transparent);
-  std::fprintf(stderr, "runout: wrote %s (t* = %.2f)\n", o.output.c_str(), t_star);
+  const render::Image image = maker.make(world, t_star);
+  render::write_png(o.output, image, o.picture.transparent);
+  if (!o.describe.empty()) {
+    const render::View& v = maker.view();
+    nlohmann::json j;
+    j["t_star"] = t_star;
+    j["width"] = image.width;
+    j["height"] = image.height;
+    j["extent"] = {v.x0, v.x0 + image.width / v.scale, v.y0, v.y0 + image.height / v.scale};
+    j["legend"] = nlohmann::json::array();
+    for (const auto& [c, label] : maker.legend_entries()) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "#%02x%02x%02x", c.r, c.g, c.b);
+      j["legend"].push_back({{"label", label}, {"color", hex}});
+    }
+    io::write_file_atomically(o.describe, j.dump(1) + "\n");
+  }
+  if (!o.quiet) std::fprintf(stderr, "runout: wrote %s (t* = %.2f)\n", o.output.c_str(), t_star);
   return 0;
 }
 

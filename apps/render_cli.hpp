@@ -38,8 +38,8 @@ struct PictureOptions {
 // movie, frames and snapshots options too.
 void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie);
 
-// Parses "0,20,40" into sorted times; throws UsageError with the bad item.
-std::vector<double> parse_times(const std::string& list);
+// Parses "0,20,40" into sorted times; throws UsageError naming the option and the bad item.
+std::vector<double> parse_times(const std::string& list, const std::string& option = "--snapshots");
 // "1280x720" (16..8192 each; odd sizes are rounded up later, for video) and "x0,y0,x1,y1";
 // both throw UsageError naming the option.
 struct FrameSize { int width = 0, height = 0; };
@@ -51,6 +51,10 @@ struct RenderOptions {
   std::string scene;  // default: scene.resolved.toml beside the checkpoint
   std::string output;
   PictureOptions picture;
+  // If set, a JSON file beside the picture says what it shows: t*, the world window it covers
+  // (extent, metres) and the legend's colours and labels (for figures that draw their own axes).
+  std::string describe;
+  bool quiet = false;
 };
 struct CompareOptions {
   std::string expected, actual, diff;

@@ -59,6 +59,28 @@ class DumpWriter : public Observer {
   std::string dir_;
 };
 
+// The whole state at chosen t*, each a checkpoint (it resumes, renders and decodes like one):
+// states/state_t0020.00.bin, for `runout render` and the study's frames (`runout plot`).
+class StateWriter : public Observer {
+ public:
+  StateWriter(std::string dir, std::uint64_t key, const AvalancheRun*& run)
+      : dir_(std::move(dir)), key_(key), run_(run) { io::make_directories(dir_); }
+  void observe(const World& world, double t_star) override {
+    char name[64];
+    std::snprintf(name, sizeof name, "/state_t%07.2f.bin", t_star);
+    // The flow at t*, not the process: without the wall time of earlier segments, the state of
+    // a resumed run is the uninterrupted run's, byte for byte.
+    RunState state = run_->state();
+    state.wall_seconds = 0;
+    io::write_file_atomically(dir_ + name, encode_checkpoint(world, key_, encode_run_state(state)));
+  }
+
+ private:
+  std::string dir_;
+  std::uint64_t key_;
+  const AvalancheRun*& run_;
+};
+
 // Default: every core for a thesis-sized pile; one thread below about 2,000 discs, where the
 // fork and join of each phase costs more than it saves (the quick pile: 140k steps/s on one
 // thread, 109k on two).
@@ -141,6 +163,7 @@ int run_command(const RunOptions& o) {
   const SceneSetup setup = derive_setup(scene, source);
   check_runnable(scene, setup, source);
   check_picture_options(o.pictures, scene);
+  const std::vector<double> state_times = o.states.empty() ? std::vector<double>{} : parse_times(o.states, "--states");
   check_folder_writable(o.out_dir, "--out");
   const int threads = resolve_threads(o.threads, setup);
 
@@ -189,6 +212,11 @@ int run_command(const RunOptions& o) {
   if (scene.output.dump_every > 0) {
     dumps.emplace(folder.staging + "/dump");
     run.add_observer(*dumps, {scene.output.dump_every, 0.0, {}});
+  }
+  std::optional<StateWriter> states;
+  if (!state_times.empty()) {
+    states.emplace(folder.staging + "/states", key, run_ptr);
+    run.add_observer(*states, {0.0, 0.0, state_times});
   }
   std::unique_ptr<PictureSession> pictures;
   if (o.pictures.wants_pictures()) {

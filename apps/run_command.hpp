@@ -24,6 +24,7 @@ struct RunOptions {
   bool no_cache = false;
   bool quiet = false;
   bool end_at_last_snapshot = false;  // stop at the last --snapshots time, at rest or not
+  std::string states;  // "0,20,40": the whole state (a checkpoint) at these t*, OUT/states/
   PictureOptions pictures;
 };
 
@@ -68,10 +69,14 @@ struct SweepOptions {
 struct PlotOptions {
   std::string dir;   // a sweep folder
   std::string out;   // default DIR/figures
+  bool frames = true;  // the study's frames (figs. 3.4, 4.7-4.10) from the cases' states
   std::string self;  // this binary: the script is found beside it
 };
 // `runout plot DIR` (plot_command.cpp): runs scripts/runout_plot.py (matplotlib) on a sweep.
 int plot_command(const PlotOptions& o);
+// Draws the study's frames of a sweep's finished cases into FRAMES_DIR (study_frames.cpp):
+// the pictures and FRAMES_DIR/frames.json, which lists them. Returns the number of pictures.
+int render_study_frames(const std::string& sweep_dir, const std::string& frames_dir);
 // Runs scripts/runout_plot.py (found beside `self`) with these arguments; its exit code.
 int run_plot_script(const std::string& self, const std::vector<std::string>& script_args);
 

@@ -44,6 +44,10 @@ bool is_own_snapshot(const std::string& name) {
   return name.rfind("snapshot_t", 0) == 0 && name.size() > 14 && name.substr(name.size() - 4) == ".png";
 }
 
+bool is_own_state(const std::string& name) {
+  return name.rfind("state_t", 0) == 0 && name.size() > 11 && name.substr(name.size() - 4) == ".bin";
+}
+
 }  // namespace
 
 RunFolder::RunFolder(std::string d)
@@ -55,6 +59,7 @@ RunFolder::RunFolder(std::string d)
       previous_checkpoint(dir + "/checkpoint.prev.bin"),
       staging(dir + "/.partial"),
       dump(dir + "/dump"),
+      states(dir + "/states"),
       preparation(dir + "/preparation.json") {}
 
 void check_folder_writable(const std::string& path, const std::string& option) {
@@ -83,7 +88,7 @@ namespace {
 bool holds_own_files(const RunFolder& f) {
   std::error_code ec;
   for (const std::string& p : {f.scene, f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint,
-                               f.staging, f.dump, f.preparation})
+                               f.staging, f.dump, f.states, f.preparation})
     if (path_present(p)) return true;
   for (const auto& e : fs::directory_iterator(f.dir, ec))
     if (is_own_snapshot(e.path().filename().string())) return true;
@@ -148,12 +153,12 @@ void clear_own_files(const RunFolder& f) {
   // summary.json first: from here on the folder is not a complete result.
   for (const std::string& p : {f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint, f.scene, f.preparation})
     fs::remove(p, ec);
-  for (const std::string& d : {f.staging, f.dump}) {
+  for (const std::string& d : {f.staging + "/dump", f.staging + "/states", f.staging, f.dump, f.states}) {
     for (const auto& e : fs::directory_iterator(d, ec)) {
       const std::string name = e.path().filename().string();
       if ((name.rfind("frame.", 0) == 0 && e.path().extension() == ".lammpstrj") || is_own_snapshot(name) ||
-          name == "dump")
-        fs::remove_all(e.path(), ec);
+          is_own_state(name))
+        fs::remove(e.path(), ec);
     }
     fs::remove(d, ec);  // only if now empty: a user's own file in it stays
   }
@@ -173,11 +178,22 @@ void write_checkpoint(const RunFolder& f, const std::string& bytes) {
 void publish_staged(const RunFolder& f) {
   std::error_code ec;
   if (!fs::is_directory(f.staging, ec)) return;
+  auto move = [](const fs::path& from, const fs::path& to) {
+    std::error_code e;
+    fs::rename(from, to, e);
+    if (e) throw IoError("cannot move " + from.string() + " to " + to.string() + ": " + e.message());
+  };
   for (const auto& e : fs::directory_iterator(f.staging, ec)) {
     const fs::path to = fs::path(f.dir) / e.path().filename();
-    fs::remove_all(to, ec);
-    fs::rename(e.path(), to, ec);
-    if (ec) throw IoError("cannot move " + e.path().string() + " to " + to.string() + ": " + ec.message());
+    if (e.is_directory() && fs::is_directory(to)) {
+      // Merged, not replaced: a resumed run that had already ended stages an empty folder,
+      // and must not take the published frames or states with it.
+      for (const auto& inner : fs::directory_iterator(e.path())) move(inner.path(), to / inner.path().filename());
+      fs::remove(e.path(), ec);
+    } else {
+      fs::remove_all(to, ec);
+      move(e.path(), to);
+    }
   }
   fs::remove(f.staging, ec);
 }

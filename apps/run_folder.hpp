@@ -17,6 +17,7 @@ namespace runout::app {
 struct RunFolder {
   explicit RunFolder(std::string dir);
   std::string dir, scene, summary, timeseries, checkpoint, previous_checkpoint, staging, dump;
+  std::string states;       // whole states at chosen t* (runout run --states), checkpoints
   std::string preparation;  // the pile's settle report, so a resumed run reports it too
 };
 

@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet,-q", run.quiet, "no progress on stderr");
   run_cmd->add_flag("--end-at-last-snapshot", run.end_at_last_snapshot,
                     "stop at the last --snapshots time even before rest (the summary then says at_rest = false)");
+  run_cmd->add_option("--states", run.states,
+                      "save the whole state at these t*, e.g. 0,20,40 (OUT/states/state_t*.bin: checkpoints for "
+                      "`runout render` and `runout plot`; times after the run's end are not reached)");
   runout::app::add_picture_options(run_cmd, run.pictures, true);
 
   runout::app::BenchOptions bench;
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
   auto* plot_cmd = cli.add_subcommand("plot", "the thesis's figures (PNG and PDF, matplotlib) from a sweep folder");
   plot_cmd->add_option("dir", plot.dir, "sweep folder (with points.csv)")->required()->check(CLI::ExistingDirectory);
   plot_cmd->add_option("--out,-o", plot.out, "folder for the figures (default DIR/figures)");
+  plot_cmd->add_flag("!--no-frames", plot.frames, "skip the study's frames (the flow strip and the deposits)");
 
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");

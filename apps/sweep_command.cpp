@@ -255,6 +255,8 @@ int run_case(const Sweep& s, const SweepOptions& o, const io::SweepCase& c) {
   r.quiet = true;
   r.threads = o.threads_per_job;
   r.cache_dir = o.cache_dir;
+  if (c.keeps_states)
+    for (double t : s.def.strip_times) r.states += (r.states.empty() ? "" : ",") + std::to_string(t);
   const int code = run_command(r);
   ::close(lock);
   return code;

@@ -8,11 +8,16 @@ Reads DIR/points.csv, DIR/results.csv and each case's DIR/cases/NAME/timeseries.
 PNG and PDF of: fig4_1 (mu against %A_p per D/d, the monodisperse value dashed), fig4_2 (%A_p,m
 against D/d with the bracket of its neighbouring shares), fig4_3 (E_k/Ep0 against t*), fig4_14
 (H_layer/d against %A_p), fig4_15 (mean heights above the bed of small and large discs against
-x_cm) and fig4_16 (basal spin against t*). One colour per D/d in every figure. Restyle freely:
-this file is installed with runout so that it can be copied and edited.
+x_cm) and fig4_16 (basal spin against t*). One colour per D/d in every figure. From the pictures
+`runout plot` draws first (DIR/figures/frames, listed in frames.json): fig3_4 (the flow sequence
+of one case, thesis: D/d = 8.33, 25 %), a strip per case in figures/strips, and per D/d the
+deposit around its centroid with the basal layer highlighted (figs. 4.7-4.10) at the share of
+least friction and its neighbours. Restyle freely: this file is installed with runout so that it
+can be copied and edited.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import sys
@@ -249,12 +254,145 @@ def main():
     fig.suptitle("Fig. 4.15: segregation along the run-out", y=1.03)
     save(fig, out, "fig4_15_heights_vs_xcm", written)
 
-    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima)
+    strips = study_frames(a.dir, out, results, minima, written)
+    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima, strips)
     for path in written:
         print(path)
 
 
-def report(folder, figures, points, results, pngs, minima):
+# The thesis's numbers for the deposit figures of each size ratio.
+DEPOSIT_FIGURES = {"8.33": "4_7", "4": "4_8", "3": "4_9", "2": "4_10"}
+
+
+def study_frames(folder, out, results, minima, written):
+    """Fig. 3.4, a strip per case and the deposit figures, from the pictures in out/frames.
+    Returns the per-case strips (path, case) for the report."""
+    import matplotlib.image as mpimg
+    import matplotlib.patches as mpatches
+
+    path = os.path.join(out, "frames", "frames.json")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        frames = {c["case"]: c for c in json.load(f)["cases"]}
+    frame_dir = os.path.join(out, "frames")
+
+    def picture(entry):
+        base = os.path.join(frame_dir, entry["png"])
+        with open(base[:-4] + ".json") as f:
+            return mpimg.imread(base), json.load(f)
+
+    def legend(fig, info, **kw):
+        handles = [mpatches.Patch(color=e["color"], label=e["label"]) for e in info["legend"]]
+        fig.legend(handles=handles, fontsize=8, frameon=False, **kw)
+
+    def strip(case, title, name):
+        c = frames[case]
+        D = c["large_diameter"]
+        pics = [picture(e) for e in c["strip"]]
+        aspect = pics[0][0].shape[0] / pics[0][0].shape[1]
+        fig, axes = plt.subplots(len(pics), 1, figsize=(8.0, 0.4 + len(pics) * (8.0 * aspect + 0.45)),
+                                 squeeze=False, sharex=True)
+        for k, (ax, (img, info)) in enumerate(zip(axes[:, 0], pics)):
+            x0, x1, y0, y1 = (v / D for v in info["extent"])
+            ax.imshow(img, extent=(x0, x1, y0, y1), interpolation="lanczos")
+            ax.grid(False)
+            when = f"at rest, t* = {info['t_star']:.0f}" if c["strip"][k]["at_rest"] else f"t* = {info['t_star']:.0f}"
+            ax.set_title(f"{chr(ord('a') + k)}) {when}", loc="left", fontsize=9)
+            ax.set_ylabel("y / D", fontsize=8)
+            ax.tick_params(labelsize=7)
+        axes[-1, 0].set_xlabel("x / D (0 at the foot of the incline)")
+        legend(fig, pics[0][1], loc="upper right", ncol=len(pics[0][1]["legend"]))
+        fig.suptitle(title, x=0.02, ha="left", fontsize=10)
+        fig.tight_layout()
+        return fig
+
+    rows = {r["case"]: r for r in results}
+
+    def label(case):
+        r = rows.get(case, {})
+        parts = []
+        if "ratio" in r:
+            parts.append(f"D/d = {r['ratio']}")
+        if "small_share" in r:
+            parts.append(f"%A_p = {float(r['small_share']):g}")
+        if "seed" in r:
+            parts.append(f"seed {r['seed']}")
+        return ", ".join(parts) or case
+
+    strips = []
+    with_strip = [c for c in sorted(frames) if frames[c].get("strip")]
+    strip_dir = os.path.join(out, "strips")
+    for case in with_strip:
+        os.makedirs(strip_dir, exist_ok=True)
+        fig = strip(case, f"Flow sequence: {label(case)}", case)
+        target = os.path.join(strip_dir, f"strip_{case}.png")
+        fig.savefig(target + ".tmp", dpi=150, bbox_inches="tight", format="png")
+        plt.close(fig)
+        os.replace(target + ".tmp", target)
+        strips.append((target, case))
+
+    # Fig. 3.4 is the thesis's D/d = 8.33, 25 % case: the nearest one of this sweep.
+    def distance(case):
+        r = rows.get(case, {})
+        return (abs((number(r.get("ratio")) or 8.33) - 8.33), abs((number(r.get("small_share")) or 25) - 25), case)
+
+    if with_strip:
+        best = min(with_strip, key=distance)
+        fig = strip(best, f"Fig. 3.4: the avalanche down the incline, {label(best)}", best)
+        save(fig, out, "fig3_4_flow_sequence", written)
+
+    # Figs. 4.7-4.10: per D/d, the deposit at %A_p,m and at its neighbouring shares (the thesis
+    # shows below, at and above the minimum), first seed, around the centroid (*).
+    share_min = {row.split(",")[0]: number(row.split(",")[1]) for row in minima[1:]}
+    by_ratio = defaultdict(dict)
+    for case, c in frames.items():
+        r = rows.get(case)
+        if not r or "deposit" not in c or "small_share" not in r:
+            continue
+        share = float(r["small_share"])
+        if not 0 < share < 100:
+            continue  # one species: no basal layer to show
+        seed = number(r.get("seed", "0")) or 0
+        key = r.get("ratio", "—")
+        if share not in by_ratio[key] or seed < by_ratio[key][share][0]:
+            by_ratio[key][share] = (seed, case)
+    for ratio, cases in sorted(by_ratio.items(), key=lambda kv: ratio_key(kv[0])):
+        shares = sorted(cases)
+        m = share_min.get(ratio)
+        k = shares.index(m) if m in shares else len(shares) // 2
+        lo = max(0, min(k - 1, len(shares) - 3))
+        chosen = shares[lo:lo + 3]
+        pics = [(s, picture(frames[cases[s][1]]["deposit"]), frames[cases[s][1]]) for s in chosen]
+        heights = [p[1][0].shape[0] / p[1][0].shape[1] for p in pics]
+        fig, axes = plt.subplots(len(pics), 1, figsize=(8.0, 0.6 + sum(8.0 * h + 0.5 for h in heights)),
+                                 squeeze=False, gridspec_kw={"height_ratios": heights})
+        for j, (ax, (share, (img, info), c)) in enumerate(zip(axes[:, 0], pics)):
+            D = c["large_diameter"]
+            cx, cy = c["deposit"]["centroid"]
+            x0, x1, y0, y1 = info["extent"]
+            ax.imshow(img, extent=((x0 - cx) / D, (x1 - cx) / D, y0 / D, y1 / D), interpolation="lanczos")
+            ax.plot([0], [cy / D], marker="*", ms=14, color="black", mec="white", mew=0.8, ls="none")
+            ax.grid(False)
+            at = " = %A_p,m" if m is not None and share == m else ""
+            ax.set_title(f"({chr(ord('a') + j)}) %A_p = {share:g}{at}", loc="left", fontsize=9)
+            ax.set_ylabel("y / D", fontsize=8)
+            ax.tick_params(labelsize=7)
+        axes[-1, 0].set_xlabel("(x − x_c) / D, from the deposit's centroid (*)")
+        legend(fig, pics[0][1][1], loc="upper right", ncol=3)
+        number_ = DEPOSIT_FIGURES.get(ratio)
+        head = f"Fig. {number_.replace('_', '.')}: " if number_ else ""
+        which = f" for D/d = {ratio}" if number(ratio) is not None else ""
+        fig.suptitle(f"{head}the deposit{which}, its basal layer of small discs highlighted",
+                     x=0.02, ha="left", fontsize=10)
+        fig.tight_layout()
+        clean = str(ratio).replace(".", "_")
+        save(fig, out, f"fig{number_}_deposit_Dd{clean}" if number_ else
+             f"deposit_Dd{clean}" if number(ratio) is not None else "deposit", written)
+    return strips
+
+
+def report(folder, figures, points, results, pngs, minima, strips=()):
     """DIR/report.html: one page, readable offline (no fetches), with the table of points, every
     figure, and links to each case's files. Its script puts "images: LOADED/TOTAL" in the title
     once the page has loaded, which the test reads from headless Chromium."""
@@ -274,6 +412,9 @@ def report(folder, figures, points, results, pngs, minima):
         f'(<a href="cases/{html.escape(r["case"])}/timeseries.csv">time series</a>, '
         f'<a href="cases/{html.escape(r["case"])}/scene.resolved.toml">scene</a>): mu = {html.escape(fmt(r.get("mu_global")))}</li>\n'
         for r in results)
+    strip_links = ("<p>The flow sequence of every case that kept its states: " + ", ".join(
+        f'<a href="{html.escape(os.path.relpath(p, folder))}">{html.escape(c)}</a>' for p, c in strips) + ".</p>\n"
+        if strips else "")
     images = "".join(f'<figure><img src="{html.escape(os.path.join(rel, os.path.basename(p)))}" alt="{html.escape(os.path.basename(p))}">'
                      f'<figcaption><a href="{html.escape(os.path.join(rel, os.path.basename(p)[:-4]))}.pdf">PDF</a></figcaption></figure>\n'
                      for p in pngs)
@@ -297,7 +438,7 @@ img{{max-width:100%}}figure{{margin:1em 0}}</style></head><body>
 {rows}</table></div>
 {minimum}
 <h2>Figures</h2>
-{images}<h2>Cases</h2><ul>
+{images}{strip_links}<h2>Cases</h2><ul>
 {cases}</ul>
 <script>
 window.addEventListener("load", function () {{

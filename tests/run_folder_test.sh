@@ -87,6 +87,12 @@ printf '[species.disc]\ndiameter = 0.5\n[[particles]]\nx = 0.0\ny = 0.0\nvx = 1.
 cp "$work/A/timeseries.csv" "$work/two_series.csv"; cp "$work/A/summary.json" "$work/two_summary.json"
 "$bin" run "$work/two.toml" --out "$work/A" -q --resume >/dev/null && ok || bad "resume of an ended run"
 cmp -s "$work/A/timeseries.csv" "$work/two_series.csv" && same_summary "$work/A/summary.json" "$work/two_summary.json" && ok || bad "resuming an ended run changed its results"
+# ... and keeps its published dump frames and states (the resumed run stages empty folders)
+"$bin" run "$work/two.toml" --out "$work/S" -q --dump-every 0.5 --states 0,0.5 >/dev/null || bad "run with states"
+listing=$(cd "$work/S" && sha256sum dump/* states/*)
+[ "$(ls "$work/S/states" | wc -l)" -eq 2 ] && [ "$(ls "$work/S/dump" | wc -l)" -gt 1 ] && ok || bad "states/dump: $listing"
+"$bin" run "$work/two.toml" --out "$work/S" -q --resume --dump-every 0.5 --states 0,0.5 >/dev/null &&
+  [ "$(cd "$work/S" && sha256sum dump/* states/*)" = "$listing" ] && ok || bad "resuming an ended run lost its dump frames or states: $(ls -R "$work/S")"
 
 # 4. The reference: the quick pile run without a stop (this also settles the cached pile).
 "$bin" run "$quick" --out "$work/ref" -q "${cache[@]}" --set output.checkpoint_every=3.7 >/dev/null || bad "reference run"

@@ -21,7 +21,7 @@ grep -q '^30,2,' "$work/local/points.csv" && ok || bad "points.csv: $(head -2 "$
 
 # runout plot: every figure as PNG and PDF; each PNG is read back by matplotlib's reader.
 "$bin" plot "$work/local" >"$work/plot.out" 2>"$work/plot.err" && ok || bad "runout plot: $(tail -3 "$work/plot.err")"
-[ "$(ls "$work/local/figures"/*.png 2>/dev/null | wc -l)" -eq 6 ] && [ "$(ls "$work/local/figures"/*.pdf 2>/dev/null | wc -l)" -eq 6 ] &&
+[ "$(ls "$work/local/figures"/*.png 2>/dev/null | wc -l)" -eq 8 ] && [ "$(ls "$work/local/figures"/*.pdf 2>/dev/null | wc -l)" -eq 8 ] &&
   ok || bad "figures: $(ls "$work/local/figures" 2>&1)"
 /usr/bin/python3 - "$work"/local/figures/*.png <<'PY' && ok || bad "a figure is not a readable PNG of a sensible size"
 import sys
@@ -32,12 +32,42 @@ for p in sys.argv[1:]:
     assert a[..., :3].std() > 0.05, (p, "blank")
 PY
 head -c 5 "$work/local/figures/fig4_1_mu_vs_share.pdf" | grep -q "%PDF-" && ok || bad "fig4_1 PDF"
+# The study's frames: the cases of the first seed kept their states at the strip times up to
+# their end (the tiny pile rests before t* = 100), those of seed 2 none; every picture's JSON
+# says which window it shows, and the deposit's centroid lies inside its window; the picture
+# highlights a basal layer exactly when the summary measured one.
+[ -e "$work/local/cases/seed1_pct30/states/state_t0000.00.bin" ] && [ ! -e "$work/local/cases/seed2_pct30/states" ] &&
+  [ ! -e "$work/local/cases/seed1_pct30/.partial" ] && ok || bad "states: $(ls -a "$work/local/cases/"*)"
+[ -e "$work/local/figures/strips/strip_seed1_pct30.png" ] && [ ! -e "$work/local/figures/strips/strip_seed2_pct30.png" ] &&
+  ok || bad "strips: $(ls "$work/local/figures/strips" 2>&1)"
+/usr/bin/python3 - "$work/local" <<'PY' && ok || bad "frames.json does not describe the frames"
+import json, os, sys
+import matplotlib.image as im
+d = sys.argv[1]
+frames = json.load(open(os.path.join(d, "figures/frames/frames.json")))["cases"]
+assert len(frames) == 4, len(frames)
+for c in frames:
+    seed1 = c["case"].startswith("seed1")
+    assert ("strip" in c) == seed1, c
+    if seed1:
+        times = [json.load(open(os.path.join(d, "figures/frames", e["png"][:-4] + ".json")))["t_star"] for e in c["strip"]]
+        assert times[:-1] == sorted(times[:-1]) and times[0] == 0 and times[-1] > times[-2], times
+        assert c["strip"][-1]["at_rest"] and not c["strip"][0]["at_rest"]
+    info = json.load(open(os.path.join(d, "figures/frames", c["deposit"]["png"][:-4] + ".json")))
+    x0, x1, y0, y1 = info["extent"]
+    cx, cy = c["deposit"]["centroid"]
+    h = json.load(open(os.path.join(d, "cases", c["case"], "summary.json")))["H_layer_over_d"]
+    assert x0 < cx < x1 and y0 < cy < y1 and (c["deposit"]["layer_discs"] > 0) == (h > 0), (info, c, h)
+    img = im.imread(os.path.join(d, "figures/frames", c["deposit"]["png"]))
+    assert img.shape[1] == info["width"] == 1600 and img.shape[0] == info["height"], img.shape
+    assert [e["label"] for e in info["legend"]] == ["basal layer", "other small", "large"], info["legend"]
+PY
 # The report: headless Chromium loads it from disk (no network), its script counts the images
 # that loaded, and a screenshot is taken.
 if command -v chromium >/dev/null; then
   title=$(timeout 120 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 --dump-dom \
           "file://$work/local/report.html" 2>/dev/null | grep -o "<title>[^<]*</title>")
-  [ "$title" = "<title>images: 6/6</title>" ] && ok || bad "report.html in Chromium: $title (want images: 6/6)"
+  [ "$title" = "<title>images: 8/8</title>" ] && ok || bad "report.html in Chromium: $title (want images: 8/8)"
   timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1200,1600 \
     --screenshot="$work/report.png" "file://$work/local/report.html" >/dev/null 2>&1
   [ "$(stat -c %s "$work/report.png" 2>/dev/null || echo 0)" -gt 20000 ] && ok || bad "no screenshot of report.html"
@@ -68,6 +98,12 @@ kill -9 $pid; wait $pid 2>/dev/null
 sleep 0.5  # the case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint
 "$bin" sweep "$sweep" --out "$work/killed" --jobs 2 "${cache[@]}" 2>"$work/killed.err" &&
   cmp -s "$work/killed/results.csv" "$work/first.csv" && ok || bad "killed + restarted results.csv differs: $(tail -3 "$work/killed.err")"
+# ... and the states it saved along the way are the uninterrupted run's, byte for byte.
+for c in seed1_pct30 seed1_pct50; do
+  (cd "$work/local/cases/$c/states" && sha256sum state_t*.bin) >"$work/states.sum"
+  (cd "$work/killed/cases/$c/states" && sha256sum -c --quiet "$work/states.sum") && ok ||
+    bad "killed + restarted states of $c differ from the uninterrupted ones"
+done
 
 # Bad sweeps: named by file and key; the folder of a finished sweep is left as it was.
 before=$(tree_sum "$work/local")

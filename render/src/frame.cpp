@@ -191,6 +191,22 @@ std::string format_number(double v) {
 
 }  // namespace
 
+std::vector<std::pair<Rgba, std::string>> FrameMaker::legend_entries() const {
+  std::vector<std::pair<Rgba, std::string>> entries;
+  if (options_.color == ColorMode::layer)
+    return {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"}, {palette::kMutedLarge, "large"}};
+  if (options_.color != ColorMode::species) return entries;
+  char buf[96];
+  for (std::size_t s = 0; s < scene_.species.size(); ++s) {
+    if (setup_.counts[s] == 0) continue;
+    const int si = static_cast<int>(s);
+    std::snprintf(buf, sizeof buf, "%s, %s = %s m", scene_.species[s].name.c_str(),
+                  si == setup_.largest_species ? "D" : "d", format_number(scene_.species[s].diameter).c_str());
+    entries.push_back({si == setup_.largest_species ? palette::kLarge : si == setup_.roles.small ? palette::kSmall : palette::kOther, buf});
+  }
+  return entries;
+}
+
 void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
   const double t_star = plan.t_star;
   const int W = img.width, H = img.height;
@@ -241,19 +257,7 @@ void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
     text_.draw(img, x1 - text_.width(l1, fs), y_labels, l1, fs, ink);
     if (spin) text_.draw(img, x0 + bw / 2 - text_.width("0", fs) / 2, y_labels, "0", fs, ink);
   } else {
-    std::vector<std::pair<Rgba, std::string>> entries;
-    char buf[96];
-    if (options_.color == ColorMode::species) {
-      for (std::size_t s = 0; s < scene_.species.size(); ++s) {
-        if (setup_.counts[s] == 0) continue;
-        const int si = static_cast<int>(s);
-        std::snprintf(buf, sizeof buf, "%s, %s = %s m", scene_.species[s].name.c_str(),
-                      si == setup_.largest_species ? "D" : "d", format_number(scene_.species[s].diameter).c_str());
-        entries.push_back({si == setup_.largest_species ? palette::kLarge : si == setup_.roles.small ? palette::kSmall : palette::kOther, buf});
-      }
-    } else {
-      entries = {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"}, {palette::kMutedLarge, "large"}};
-    }
+    const auto entries = legend_entries();
     int widest = 0;
     for (const auto& e : entries) widest = std::max(widest, text_.width(e.second, fs));
     const int row = fs + fs / 3, sw = fs;  // swatch size

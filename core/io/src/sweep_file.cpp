@@ -75,6 +75,7 @@ SweepDef read_sweep(const std::string& text, const std::string& source, double l
   SweepDef s;
   s.source = source;
   std::string combine = "product";
+  bool states_for_all = false;
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
     if (key == "base") {
@@ -84,8 +85,31 @@ SweepDef read_sweep(const std::string& text, const std::string& source, double l
       if (!v.is_string() || (v.as_string()->get() != "product" && v.as_string()->get() != "zip"))
         throw ConfigError(source, "combine", "expected \"product\" (every combination) or \"zip\" (the axes side by side)");
       combine = v.as_string()->get();
+    } else if (key == "pictures") {
+      const toml::table* t = v.as_table();
+      if (!t) throw ConfigError(source, "pictures", "expected a table [pictures]");
+      for (const auto& [pk, pv] : *t) {
+        const std::string where = "pictures." + std::string(pk.str());
+        if (pk.str() == "strip_times") {
+          const toml::array* a = pv.as_array();
+          if (!a) throw ConfigError(source, where, "expected a list of t* >= 0 (or [] for none)");
+          s.strip_times.clear();
+          for (const toml::node& n : *a) {
+            const double t_star = number_of(n, source, where);
+            if (!(t_star >= 0 && t_star <= 1e6))
+              throw ConfigError(source, where, "value " + value_text(n) + " is out of the allowed range [0, 1e6]");
+            s.strip_times.push_back(t_star);
+          }
+        } else if (pk.str() == "seeds") {
+          if (!pv.is_string() || (pv.as_string()->get() != "first" && pv.as_string()->get() != "all"))
+            throw ConfigError(source, where, "expected \"first\" (the cases of the first seed keep their states) or \"all\"");
+          states_for_all = pv.as_string()->get() == "all";
+        } else {
+          throw ConfigError(source, where, "unknown key (allowed: strip_times, seeds)");
+        }
+      }
     } else if (key != "axes") {
-      throw ConfigError(source, key, "unknown key (allowed: base, combine, axes)");
+      throw ConfigError(source, key, "unknown key (allowed: base, combine, axes, pictures)");
     }
   }
   if (s.base.empty()) throw ConfigError(source, "base", "is required: \"thesis\" or the path of a scene file");
@@ -146,6 +170,7 @@ SweepDef read_sweep(const std::string& text, const std::string& source, double l
     }
   for (std::size_t c = 0; c < total; ++c) {
     SweepCase k;
+    k.keeps_states = !s.strip_times.empty();
     std::size_t rest = c;
     std::vector<std::size_t> pick(list.size());
     for (std::size_t a = list.size(); a-- > 0;) {  // last axis fastest
@@ -159,6 +184,7 @@ SweepDef read_sweep(const std::string& text, const std::string& source, double l
       k.name += short_name(list[a].key);
       k.name += clean(v);
       for (const Override& o : list[a].overrides[pick[a]]) k.overrides.push_back(o);
+      if (list[a].key == "seed" && pick[a] != 0 && !states_for_all) k.keeps_states = false;
     }
     s.cases.push_back(std::move(k));
   }

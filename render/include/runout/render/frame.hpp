@@ -58,6 +58,10 @@ class FrameMaker {
   Image draw(const FramePlan& plan);
   Image make(const World& world, double t_star) { return draw(plan(world, t_star)); }
   const FrameOptions& options() const { return options_; }
+  // What the legend says (species or basal-layer mode): each entry's colour and label; the same
+  // entries whether overlays are drawn or a figure draws its own legend (runout plot).
+  std::vector<std::pair<Rgba, std::string>> legend_entries() const;
+  const View& view() const { return view_; }
 
  private:
   void update_camera(const World& world, double t_star);

@@ -16,6 +16,7 @@ struct SweepCase {
   std::string name;
   std::vector<std::pair<std::string, std::string>> axes;  // axis key, value text
   std::vector<Override> overrides;
+  bool keeps_states = false;  // saves its states at the strip times (runout run --states)
 };
 
 struct SweepDef {
@@ -23,6 +24,9 @@ struct SweepDef {
   std::string base;                    // "thesis" (the built-in thesis pile) or a scene path
   std::vector<std::string> axis_keys;  // in file order
   std::vector<SweepCase> cases;        // the product (or the zip) of the axes, first axis slowest
+  // [pictures]: the t* of the flow sequence (thesis fig. 3.4; its last panel is the deposit at
+  // rest), saved as states by the cases of the first seed (`seeds = "all"`: every case).
+  std::vector<double> strip_times = {0, 20, 40, 60, 80, 100};
 };
 
 // Axes: `ratio` (D/d: species.small.diameter = D / ratio, 8.33 standing for the thesis's
