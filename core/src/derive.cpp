@@ -1,4 +1,5 @@
 #include "runout/derive.hpp"
+#include "runout/size_distribution.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -120,7 +121,7 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
     const double ra = 0.5 * species[a].diameter;
     const double ma = sphere_mass(ra, material.density);
     for (int b = 0; b < n; ++b) {
-      const double rb = 0.5 * species[b].diameter;
+      const double rb = 0.5 * smallest_diameter(species[b]);
       const double mb = sphere_mass(rb, material.density);
       t.pair[a * n + b] = make_pair(ra * rb / (ra + rb), ma * mb / (ma + mb),
                                     material.restitution, material.friction, contact, linear_pp, hertz_pp,
@@ -146,11 +147,12 @@ double minimum_collision_period(const ContactTable& table, std::span<const Speci
   };
   for (int a = 0; a < n; ++a) {
     if (!present[a]) continue;
-    const double ra = 0.5 * species[a].diameter;
+    // The smallest disc of each species with the species' stiffness: the shortest period.
+    const double ra = 0.5 * smallest_diameter(species[a]);
     const double ma = sphere_mass(ra, density);
     for (int b = 0; b < n; ++b) {
       if (!present[b]) continue;
-      const double rb = 0.5 * species[b].diameter;
+      const double rb = 0.5 * smallest_diameter(species[b]);
       // How many b-discs fit around one a-disc: 6 for equal sizes.
       const double ring = std::floor(kPi / std::asin(rb / (ra + rb)) + 1e-9);
       consider(ma, ra, table.between(a, b), ring);

@@ -60,6 +60,18 @@ SegregationHeights mean_heights(const Particles& p, const std::vector<Segment>& 
   return {ns ? hs / ns : std::nan(""), nl ? hl / nl : std::nan("")};
 }
 
+std::vector<double> mean_heights_by_species(const Particles& p, const std::vector<Segment>& segments,
+                                            int species_count) {
+  std::vector<double> sum(species_count, 0.0);
+  std::vector<std::size_t> n(species_count, 0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    sum[p.species[k]] += height_above_bed(segments, {p.x[k], p.y[k]});
+    ++n[p.species[k]];
+  }
+  for (int s = 0; s < species_count; ++s) sum[s] = n[s] ? sum[s] / n[s] : std::nan("");
+  return sum;
+}
+
 double basal_spin(const Particles& p, const std::vector<Segment>& segments, SpeciesRoles roles,
                   double unit_time) {
   double sum = 0;
@@ -116,7 +128,7 @@ BasalLayer basal_layer(const Particles& p, const std::vector<Segment>& segments,
   const bool has_large = roles.large != roles.small;
   if (has_large) {
     for (std::size_t k = 0; k < n; ++k) {
-      if (p.species[k] != roles.large) continue;
+      if (p.species[k] == roles.small) continue;  // every larger disc (bidisperse: the large)
       const int b = static_cast<int>(std::floor((p.x[k] - x0) / large_diameter));
       if (b < 0 || b >= bins) continue;
       contour[b] = std::min(contour[b], height[k] - p.radius[k]);

@@ -371,6 +371,8 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.H_layer_over_d = r.basal_layer.mean_thickness / setup_.unit_length;
   r.H_layer_over_d_spread = r.basal_layer.spread / setup_.unit_length;
   r.final_basal_spin = basal_spin(p, world_.segments(), setup_.roles, setup_.unit_time);
+  r.mean_height_over_d = mean_heights_by_species(p, world_.segments(), static_cast<int>(setup_.counts.size()));
+  for (double& h : r.mean_height_over_d) h /= setup_.unit_length;
   r.final_energy = frozen ? state_.rest_sample : sample();
   constexpr double none = std::numeric_limits<double>::quiet_NaN();
   r.worst_energy_residual = state_.ledger

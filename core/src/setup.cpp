@@ -1,4 +1,5 @@
 #include "runout/setup.hpp"
+#include "runout/size_distribution.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,10 +37,13 @@ constexpr double kDampingOnset = 100.0;
 
 }  // namespace
 
-double disc_count(double area_share, int reference_large_count, double large_diameter,
-                  double diameter) {
-  const double ratio = large_diameter / diameter;
-  const double n = area_share * reference_large_count * ratio * ratio;
+double disc_count(const SpeciesDef& species, int reference_large_count, double large_diameter) {
+  // The species' share of the area of N0 large discs over its mean disc area.
+  const double ratio = large_diameter / species.diameter;
+  const double per_share = species.distribution == SizeDistribution::spread
+                               ? ratio * ratio  // SPEC eq. 3.1
+                               : large_diameter * large_diameter * mean_inverse_square_diameter(species);
+  const double n = species.area_share * reference_large_count * per_share;
   return std::ceil(n * (1.0 - 1e-9));  // 3200.0000000001 is 3200
 }
 
@@ -63,12 +67,9 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
 
   s.unit_length = unit_length(scene.species);
   s.unit_time = unit_time(scene.species, scene.integration.gravity);
-  for (int k = 0; k < static_cast<int>(scene.species.size()); ++k) {
-    if (scene.species[k].diameter <= scene.species[s.roles.small].diameter) s.roles.small = k;
-    if (scene.species[k].diameter > scene.species[s.roles.large].diameter) s.roles.large = k;
-  }
-  s.largest_species = s.roles.large;
-  s.large_diameter = scene.species[s.roles.large].diameter;
+  for (int k = 0; k < static_cast<int>(scene.species.size()); ++k)
+    if (scene.species[k].diameter > scene.species[s.largest_species].diameter) s.largest_species = k;
+  s.large_diameter = scene.species[s.largest_species].diameter;
   s.walls = scene.walls;
 
   if (scene.avalanche) {
@@ -76,8 +77,7 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
     s.counts.resize(scene.species.size());
     double total = 0;
     for (size_t k = 0; k < scene.species.size(); ++k)
-      total += disc_count(scene.species[k].area_share, a.reference_large_count, s.large_diameter,
-                          scene.species[k].diameter);
+      total += disc_count(scene.species[k], a.reference_large_count, s.large_diameter);
     // Counted in floating point and capped before anything is allocated: a tiny diameter
     // must be an error naming the count, not an int overflow or a bare bad_alloc.
     if (total > kMaxDiscs) {
@@ -88,11 +88,7 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
       throw ConfigError(source, "species", msg.str());
     }
     for (size_t k = 0; k < scene.species.size(); ++k)
-      s.counts[k] = static_cast<int>(disc_count(scene.species[k].area_share, a.reference_large_count,
-                                                s.large_diameter, scene.species[k].diameter));
-    // The species counted for roles must be present: %A_p = 0 has no small discs.
-    if (s.counts[s.roles.small] == 0) s.roles.small = s.roles.large;
-    if (s.counts[s.roles.large] == 0) s.roles.large = s.roles.small;
+      s.counts[k] = static_cast<int>(disc_count(scene.species[k], a.reference_large_count, s.large_diameter));
 
     const double D = s.large_diameter, t = std::tan(a.incline_angle_deg * kDeg);
     const double gate_x = -a.incline_length * D * std::cos(a.incline_angle_deg * kDeg);
@@ -111,6 +107,14 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
   } else {
     s.counts.assign(scene.species.size(), 0);
     for (const auto& p : scene.particles) ++s.counts[p.species];
+  }
+  // Small and large are the smallest and largest species present: %A_p = 0 has no small
+  // discs (then both are the large species), a polydisperse pile's classes may be empty.
+  s.roles.small = s.roles.large = s.largest_species;
+  for (int k = 0; k < static_cast<int>(scene.species.size()); ++k) {
+    if (s.counts[k] == 0) continue;
+    if (s.counts[s.roles.small] == 0 || scene.species[k].diameter <= scene.species[s.roles.small].diameter) s.roles.small = k;
+    if (s.counts[s.roles.large] == 0 || scene.species[k].diameter > scene.species[s.roles.large].diameter) s.roles.large = k;
   }
   // Explicit integrators are stable for omega dt < 2: dt <= tau / pi (SPEC §8 extremes).
   if (scene.integration.dt_fraction > 1.0 / kPi)
@@ -246,8 +250,12 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   double area = 0;
   for (int k : order) {
     const auto& sp = scene.species[k];
+    const bool spread = sp.distribution == SizeDistribution::spread;
+    // A class of a distribution takes its quantiles, largest first like the species.
+    std::vector<double> sizes = spread ? std::vector<double>{} : class_diameters(sp, setup.counts[k]);
     for (int c = 0; c < setup.counts[k]; ++c) {
-      const double dia = sp.diameter * rng.uniform(1.0 - sp.spread, 1.0 + sp.spread);
+      const double dia = spread ? sp.diameter * rng.uniform(1.0 - sp.spread, 1.0 + sp.spread)
+                                : sizes[sizes.size() - 1 - static_cast<std::size_t>(c)];
       final_radius.push_back(0.5 * dia);
       species.push_back(k);
       area += kPi * 0.25 * dia * dia;

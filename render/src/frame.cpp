@@ -54,6 +54,21 @@ View fit_view(double x0, double y0, double x1, double y1, int width, int height,
 FrameMaker::FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup)
     : options_(options), scene_(scene), setup_(setup), gl_(options.width, options.height) {
   gl_.set_method(options.method);
+  // Two or three species: the Okabe–Ito pair (and green for a third); a polydisperse pile's
+  // classes: viridis by size, dark for the smallest, stopping short of its pale yellow.
+  const int n = static_cast<int>(scene.species.size());
+  std::vector<int> present;
+  for (int s = 0; s < n; ++s)
+    if (setup.counts[s] > 0) present.push_back(s);
+  std::sort(present.begin(), present.end(),
+            [&](int a, int b) { return scene.species[a].diameter < scene.species[b].diameter; });
+  species_colour_.assign(n, palette::kOther);
+  for (int s = 0; s < n; ++s)
+    if (s == setup.largest_species) species_colour_[s] = palette::kLarge;
+    else if (s == setup.roles.small) species_colour_[s] = palette::kSmall;
+  if (present.size() > 3)
+    for (std::size_t r = 0; r < present.size(); ++r)
+      species_colour_[present[r]] = viridis(0.85 * static_cast<double>(r) / (present.size() - 1));
 }
 
 namespace {
@@ -156,7 +171,7 @@ void FrameMaker::colour_discs(const World& world) {
     Rgba c;
     switch (options_.color) {
       case ColorMode::species:
-        c = s == setup_.largest_species ? palette::kLarge : s == setup_.roles.small ? palette::kSmall : palette::kOther;
+        c = species_colour_[s];
         break;
       case ColorMode::spin:
         c = diverging(p.omega[k] * setup_.unit_time / options_.spin_limit);
@@ -191,19 +206,24 @@ std::string format_number(double v) {
 
 }  // namespace
 
+std::string FrameMaker::species_label(int s) const {
+  const SpeciesDef& sp = scene_.species[s];
+  char buf[160];
+  if (sp.distribution != SizeDistribution::spread)
+    std::snprintf(buf, sizeof buf, "%s, d = %.3g\u2013%.3g m", sp.name.c_str(), sp.min_diameter, sp.max_diameter);
+  else
+    std::snprintf(buf, sizeof buf, "%s, %s = %s m", sp.name.c_str(), s == setup_.largest_species ? "D" : "d",
+                  format_number(sp.diameter).c_str());
+  return buf;
+}
+
 std::vector<std::pair<Rgba, std::string>> FrameMaker::legend_entries() const {
   std::vector<std::pair<Rgba, std::string>> entries;
   if (options_.color == ColorMode::layer)
     return {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"}, {palette::kMutedLarge, "large"}};
   if (options_.color != ColorMode::species) return entries;
-  char buf[96];
-  for (std::size_t s = 0; s < scene_.species.size(); ++s) {
-    if (setup_.counts[s] == 0) continue;
-    const int si = static_cast<int>(s);
-    std::snprintf(buf, sizeof buf, "%s, %s = %s m", scene_.species[s].name.c_str(),
-                  si == setup_.largest_species ? "D" : "d", format_number(scene_.species[s].diameter).c_str());
-    entries.push_back({si == setup_.largest_species ? palette::kLarge : si == setup_.roles.small ? palette::kSmall : palette::kOther, buf});
-  }
+  for (std::size_t s = 0; s < scene_.species.size(); ++s)
+    if (setup_.counts[s] > 0) entries.push_back({species_colour_[s], species_label(static_cast<int>(s))});
   return entries;
 }
 

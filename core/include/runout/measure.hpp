@@ -32,6 +32,11 @@ struct SegregationHeights {
 SegregationHeights mean_heights(const Particles& p, const std::vector<Segment>& segments,
                                 SpeciesRoles roles);
 
+// Mean centre height above the bed per species (NaN for a species with no disc): segregation
+// class by class in a polydisperse pile.
+std::vector<double> mean_heights_by_species(const Particles& p, const std::vector<Segment>& segments,
+                                            int species_count);
+
 // Mean omega sqrt(d/g) of the small discs touching the bed (large ones when there are no small
 // ones); clockwise (forward rolling down-slope) is negative (§4.2.3). NaN if none touch.
 double basal_spin(const Particles& p, const std::vector<Segment>& segments, SpeciesRoles roles,
@@ -44,7 +49,8 @@ std::pair<double, double> deposit_extent(const Particles& p, double bin, double 
 
 // The deposit's basal layer (§4.2.1, eqs. 4.6–4.9): the lowest large disc per bin of width D
 // along x gives a lower contour (its bottom edge); small discs whose centre lies below the
-// contour form the layer. H_layer = pi sum r^2 / (L C) over windows L = L1, 3/4, 1/2, 1/4 L1
+// contour form the layer. With more than two species, "small" is the smallest class present
+// and every larger disc draws the contour. H_layer = pi sum r^2 / (L C) over windows L = L1, 3/4, 1/2, 1/4 L1
 // centred on the deposit centroid; L1 is the unbroken stretch of D-wide bins holding at least a
 // tenth of the fullest bin's disc area (the scattered ends left out).
 struct BasalLayer {

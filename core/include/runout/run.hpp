@@ -67,6 +67,7 @@ struct RunResult {
   double wall_seconds = 0;
   double particle_steps_per_second = 0;
   std::vector<int> counts;  // per species
+  std::vector<double> mean_height_over_d;  // per species, of the deposit (NaN: none of it)
   int n_large = 0, n_small = 0;
   Eigen::Vector2d com_release{0, 0}, com_rest{0, 0};
   double H_cm = 0, L_cm = 0, mu_global = 0;  // eqs. 4.2–4.4, metres

@@ -39,11 +39,20 @@ struct IntegrationDef {
   double gravity = 9.81;     // m/s^2
 };
 
+// How a species' diameters are drawn: the thesis's spread about a nominal diameter, or one
+// class of a continuous size distribution by area (polydisperse piles, size_distribution.hpp).
+enum class SizeDistribution { spread, uniform, lognormal };
+
 struct SpeciesDef {
   std::string name;
-  double diameter = 0;     // nominal, m
-  double spread = 0.1;     // each diameter uniform in nominal * [1 - spread, 1 + spread]
+  double diameter = 0;     // nominal, m: stiffness and counts are designed for it
+  double spread = 0.1;     // spread: each diameter uniform in nominal * [1 - spread, 1 + spread]
   double area_share = 0;   // share of the total disc area (avalanche scenes)
+  // A class of a distribution by area: its diameters lie in [min_diameter, max_diameter]
+  // (nominal: their geometric mean); lognormal: ln d is normal by area, median and sigma.
+  SizeDistribution distribution = SizeDistribution::spread;
+  double min_diameter = 0, max_diameter = 0;
+  double median = 0, sigma = 0;
 };
 
 // Which side of a wall the discs are on, seen along the polyline from its first point: a

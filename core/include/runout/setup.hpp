@@ -33,9 +33,9 @@ void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::s
 
 StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int threads);
 
-// SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1).
-double disc_count(double area_share, int reference_large_count, double large_diameter,
-                  double diameter);
+// SPEC eq. 3.1: n_s = %A_s N0 (D/d_s)^2, rounded up (table 3.1); for a class of a size
+// distribution, d_s^-2 is its mean over the class's area (size_distribution.hpp).
+double disc_count(const SpeciesDef& species, int reference_large_count, double large_diameter);
 
 // A world holding the scene's explicit particles and walls.
 World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int threads);

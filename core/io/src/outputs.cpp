@@ -44,6 +44,11 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   for (std::size_t k = 0; k < r.counts.size() && k < c.species_names.size(); ++k)
     counts[c.species_names[k]] = r.counts[k];
   j["counts"] = counts;
+  // Segregation class by class: the deposit's mean centre height above the bed per species.
+  nlohmann::json heights = nlohmann::json::object();
+  for (std::size_t k = 0; k < r.mean_height_over_d.size() && k < c.species_names.size(); ++k)
+    heights[c.species_names[k]] = number(r.mean_height_over_d[k]);
+  j["mean_height_over_d"] = heights;
   j["at_rest"] = r.at_rest;
   j["reached_end_time"] = r.reached_end_time;  // stopped by output.end_time (or --end-at-last-snapshot)
   j["t_star_rest"] = number(r.t_star_rest);

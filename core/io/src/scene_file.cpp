@@ -1,4 +1,5 @@
 #include "runout/io/scene_file.hpp"
+#include "runout/size_distribution.hpp"
 
 #include <toml++/toml.h>
 
@@ -165,6 +166,8 @@ const std::vector<std::pair<std::string, NormalModel>> kNormalModels = {
     {"hertz", NormalModel::hertz}};
 const std::vector<std::pair<std::string, WallInside>> kWallSides = {
     {"left", WallInside::left}, {"right", WallInside::right}, {"both", WallInside::both}};
+const std::vector<std::pair<std::string, SizeDistribution>> kDistributions = {
+    {"uniform", SizeDistribution::uniform}, {"lognormal", SizeDistribution::lognormal}};
 const std::vector<std::pair<std::string, IntegratorKind>> kIntegrators = {
     {"symplectic_euler", IntegratorKind::symplectic_euler},
     {"velocity_verlet", IntegratorKind::velocity_verlet}};
@@ -206,6 +209,40 @@ std::pair<double, double> read_point(const toml::node& n, const std::string& sou
   const double x = num((*a)[0]), y = num((*a)[1]);
   if (!std::isfinite(x) || !std::isfinite(y)) throw ConfigError(source, key, "coordinates must be finite");
   return {x, y};
+}
+
+// A continuous size distribution by area in [species.NAME]: distribution, min, max (m), for
+// lognormal median (m) and sigma (of ln d), classes (species it is split into) and area_share.
+void read_distribution(TableReader& r, const std::string& name, std::vector<SpeciesDef>& out) {
+  r.allow({"distribution", "min", "max", "median", "sigma", "classes", "area_share"}, "");
+  SpeciesDef f;
+  f.name = name;
+  r.choice("distribution", f.distribution, kDistributions);
+  for (const char* k : {"min", "max"})
+    if (!r.has(k)) r.fail(k, "is required with a distribution (metres, > 0)");
+  r.number("min", f.min_diameter, positive(1e6));
+  r.number("max", f.max_diameter, positive(1e6));
+  if (!(f.max_diameter > f.min_diameter))
+    r.fail("max", "must be larger than min (" + format_number(f.max_diameter) + " <= " + format_number(f.min_diameter) + ")");
+  if (f.max_diameter > 100 * f.min_diameter)
+    r.fail("max", "is more than 100 times min: the smallest discs would set a time step too small for the largest");
+  if (f.distribution == SizeDistribution::lognormal) {
+    for (const char* k : {"median", "sigma"})
+      if (!r.has(k)) r.fail(k, "is required for a lognormal distribution (median: metres; sigma: of ln d)");
+    r.number("median", f.median, positive(1e6));
+    r.number("sigma", f.sigma, {0, 3, true, false});
+    const double za = std::log(f.min_diameter / f.median) / f.sigma, zb = std::log(f.max_diameter / f.median) / f.sigma;
+    if (0.5 * (std::erfc(-zb / std::sqrt(2.0)) - std::erfc(-za / std::sqrt(2.0))) < 1e-6)
+      r.fail("median", "and sigma put less than a millionth of the area between min and max");
+  } else {
+    for (const char* k : {"median", "sigma"})
+      if (r.has(k)) r.fail(k, "belongs to a lognormal distribution (this one is uniform)");
+  }
+  int classes = 1;
+  r.integer("classes", classes, 1, 16);
+  r.number("area_share", f.area_share, closed(0, 1));
+  r.finish();
+  for (SpeciesDef& c : split_into_classes(f, classes)) out.push_back(std::move(c));
 }
 
 SceneDef read_document(const toml::table& root, const std::string& source) {
@@ -254,7 +291,11 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
       const std::string name(k.str());
       if (!v.is_table()) throw ConfigError(source, "species." + name, "expected a table [species." + name + "]");
       TableReader r(*v.as_table(), "species." + name, source);
-      r.allow({"diameter", "spread", "area_share"}, "");
+      if (r.has("distribution")) {
+        read_distribution(r, name, s.species);
+        continue;
+      }
+      r.allow({"diameter", "spread", "area_share"}, " (or distribution = \"uniform\" | \"lognormal\" with min, max, ...)");
       SpeciesDef sp;
       sp.name = name;
       if (!r.has("diameter")) r.fail("diameter", "is required (metres, > 0)");
@@ -268,6 +309,11 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   if (s.species.empty())
     throw ConfigError(source, "species", "at least one [species.NAME] table with a diameter is required");
   if (s.species.size() > 64) throw ConfigError(source, "species", "at most 64 species");
+  for (std::size_t a = 0; a < s.species.size(); ++a)
+    for (std::size_t b = a + 1; b < s.species.size(); ++b)
+      if (s.species[a].name == s.species[b].name)
+        throw ConfigError(source, "species." + s.species[b].name,
+                          "is declared twice (a distribution's classes are named NAME_1 .. NAME_N)");
 
   if (auto t = top.subtable("avalanche")) {
     AvalancheDef a;
@@ -450,6 +496,11 @@ const char* to_string(IntegratorKind k) {
     if (value == k) return name.c_str();
   return "?";
 }
+const char* to_string(SizeDistribution d) {
+  for (const auto& [name, value] : kDistributions)
+    if (value == d) return name.c_str();
+  return "spread";
+}
 
 namespace {
 
@@ -471,10 +522,24 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                          {"skin", s.integration.skin},
                                          {"gravity", s.integration.gravity}});
   toml::table species;
-  for (const auto& sp : s.species)
-    species.insert(sp.name, toml::table{{"diameter", sp.diameter},
-                                        {"spread", sp.spread},
-                                        {"area_share", sp.area_share}});
+  for (const auto& sp : s.species) {
+    if (sp.distribution == SizeDistribution::spread) {
+      species.insert(sp.name, toml::table{{"diameter", sp.diameter},
+                                          {"spread", sp.spread},
+                                          {"area_share", sp.area_share}});
+      continue;
+    }
+    // A class is written as a one-class distribution: it reads back as itself.
+    toml::table t{{"distribution", to_string(sp.distribution)},
+                  {"min", sp.min_diameter},
+                  {"max", sp.max_diameter},
+                  {"area_share", sp.area_share}};
+    if (sp.distribution == SizeDistribution::lognormal) {
+      t.insert("median", sp.median);
+      t.insert("sigma", sp.sigma);
+    }
+    species.insert(sp.name, t);
+  }
   root.insert("species", species);
   if (s.avalanche) {
     const auto& a = *s.avalanche;

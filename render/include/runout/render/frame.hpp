@@ -67,6 +67,7 @@ class FrameMaker {
   void update_camera(const World& world, double t_star);
   void colour_discs(const World& world);
   void draw_overlays(Image& image, const FramePlan& plan);
+  std::string species_label(int species) const;
 
   FrameOptions options_;
   const SceneDef& scene_;
@@ -78,6 +79,7 @@ class FrameMaker {
   bool have_view_ = false;
   double last_t_star_ = 0;
   double speed_limit_ = 0;
+  std::vector<Rgba> species_colour_;  // species mode, per species
 };
 
 // World window [x0, x1] x [y0, y1] fitted into a width x height frame with a margin (share of

@@ -42,5 +42,6 @@ const std::string& embedded_bench_scene();
 
 const char* to_string(NormalModel m);
 const char* to_string(IntegratorKind k);
+const char* to_string(SizeDistribution d);
 
 }  // namespace runout::io
