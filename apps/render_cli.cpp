@@ -102,8 +102,14 @@ std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, Avalanc
 }
 
 int render_command(const RenderOptions& o) {
-  const std::string scene_path =
-      o.scene.empty() ? (std::filesystem::path(o.checkpoint).parent_path() / "scene.resolved.toml").string() : o.scene;
+  // Default: the run's scene beside the checkpoint, or one folder up for OUT/states/*.bin.
+  std::string scene_path = o.scene;
+  if (scene_path.empty()) {
+    const std::filesystem::path dir = std::filesystem::path(o.checkpoint).parent_path();
+    scene_path = (dir / "scene.resolved.toml").string();
+    if (!std::filesystem::exists(scene_path) && std::filesystem::exists(dir.parent_path() / "scene.resolved.toml"))
+      scene_path = (dir.parent_path() / "scene.resolved.toml").string();
+  }
   const SceneDef scene = io::read_scene_file(scene_path);
   const SceneSetup setup = derive_setup(scene, scene_path);
   World world = build_explicit_world(scene, setup, 1);

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
   render_cmd->add_option("-o,--output", render.output, "PNG to write")->required();
-  render_cmd->add_option("--scene", render.scene, "scene (default: scene.resolved.toml beside the checkpoint)")
+  render_cmd->add_option("--scene", render.scene, "scene (default: scene.resolved.toml beside the checkpoint, or above it for OUT/states/)")
       ->check(CLI::ExistingFile);
   runout::app::add_picture_options(render_cmd, render.picture, false);
 

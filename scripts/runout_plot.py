@@ -114,12 +114,24 @@ def main():
     os.makedirs(out, exist_ok=True)
     points = read_csv(points_path)
     results = read_csv(os.path.join(a.dir, "results.csv"))
-    if not points or "small_share" not in points[0]:
-        sys.exit("runout plot: the sweep has no small_share axis: the thesis's figures are against %A_p")
-    has_ratio = "ratio" in points[0]
     written = []
     plt.rcParams.update({"font.size": 10, "axes.grid": True, "grid.alpha": 0.3, "figure.figsize": (6.0, 4.0)})
+    if points and "small_share" in points[0]:
+        minima = thesis_figures(a.dir, out, points, results, written)
+    else:
+        # Not a sweep over %A_p (a polydisperse pile, a knob): mu against its first axis and
+        # the segregation class by class; the frames and the report as for the thesis.
+        minima = ["ratio,share_min,bracket_low,bracket_high,mu_min_mean,mu_min_2se,at_edge"]
+        other_figures(a.dir, out, points, results, written)
+    strips = study_frames(a.dir, out, results, minima, written)
+    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima, strips)
+    for path in written:
+        print(path)
 
+
+def thesis_figures(folder, out, points, results, written):
+    """Figs. 4.1, 4.2, 4.3, 4.14, 4.15, 4.16 and DIR/minimum.csv; returns minimum.csv's lines."""
+    has_ratio = "ratio" in points[0]
     by_ratio = defaultdict(list)
     for p in points:
         by_ratio[p["ratio"] if has_ratio else "—"].append(p)
@@ -172,10 +184,10 @@ def main():
     ax.set_title("Fig. 4.2: the share of least friction, bracketed by its neighbours")
     ax.legend(fontsize=8)
     save(fig, out, "fig4_2_share_min_vs_ratio", written)
-    with open(os.path.join(a.dir, "minimum.csv.tmp"), "w") as f:
+    with open(os.path.join(folder, "minimum.csv.tmp"), "w") as f:
         f.write("\n".join(minima) + "\n")
-    os.replace(os.path.join(a.dir, "minimum.csv.tmp"), os.path.join(a.dir, "minimum.csv"))
-    written.append(os.path.join(a.dir, "minimum.csv"))
+    os.replace(os.path.join(folder, "minimum.csv.tmp"), os.path.join(folder, "minimum.csv"))
+    written.append(os.path.join(folder, "minimum.csv"))
 
     # Fig. 4.14: basal layer thickness.
     fig, ax = plt.subplots()
@@ -208,7 +220,7 @@ def main():
             rows = first_seed(cases.get(r, []))
             shades = plt.cm.viridis([0.85 * i / max(1, len(rows) - 1) for i in range(len(rows))])
             for row, shade in zip(rows, shades):
-                path = os.path.join(a.dir, "cases", row["case"], "timeseries.csv")
+                path = os.path.join(folder, "cases", row["case"], "timeseries.csv")
                 if not os.path.exists(path):
                     continue
                 ts = read_csv(path)
@@ -236,7 +248,7 @@ def main():
     for ax, r in zip(axes[0], ratios):
         rows = [row for row in first_seed(cases.get(r, [])) if 0 < float(row["small_share"]) < 100]
         for row in rows[-1:]:  # the largest share with both species
-            ts = read_csv(os.path.join(a.dir, "cases", row["case"], "timeseries.csv"))
+            ts = read_csv(os.path.join(folder, "cases", row["case"], "timeseries.csv"))
             x = [number(t["x_cm"]) for t in ts]
             s = [number(t.get("small_mean_height")) for t in ts]
             l = [number(t.get("large_mean_height")) for t in ts]
@@ -254,10 +266,51 @@ def main():
     fig.suptitle("Fig. 4.15: segregation along the run-out", y=1.03)
     save(fig, out, "fig4_15_heights_vs_xcm", written)
 
-    strips = study_frames(a.dir, out, results, minima, written)
-    report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima, strips)
-    for path in written:
-        print(path)
+    return minima
+
+
+def other_figures(folder, out, points, results, written):
+    axes = list(points[0].keys())[: list(points[0].keys()).index("n")] if points else []
+    if axes:
+        key = axes[0]
+        fig, ax = plt.subplots()
+        rows = sorted((p for p in points if number(p[key]) is not None), key=lambda p: float(p[key]))
+        ax.errorbar([float(p[key]) for p in rows], [number(p["mu_global_mean"]) for p in rows],
+                    yerr=[number(p.get("mu_global_2se")) or 0.0 for p in rows], marker="o", ms=4, capsize=3,
+                    color="#0072B2")
+        ax.set_xlabel(key)
+        ax.set_ylabel("global friction μ = H_cm / L_cm")
+        ax.set_title(f"friction against {key} (±2 SE over seeds)")
+        save(fig, out, "mu_vs_" + key.replace(".", "_"), written)
+    # Segregation per class: the deposit's mean height above the bed of each species against its
+    # nominal diameter (from each case's resolved scene), one line per case.
+    prefix = "mean_height_over_d."
+    if results and sum(c.startswith(prefix) for c in results[0]) >= 3:
+        fig, ax = plt.subplots()
+        shades = plt.cm.viridis([0.85 * i / max(1, len(results) - 1) for i in range(len(results))])
+        for row, shade in zip(results, shades):
+            sizes = nominal_diameters(os.path.join(folder, "cases", row["case"]))
+            pts = sorted((sizes[c[len(prefix):]], number(v)) for c, v in row.items()
+                         if c.startswith(prefix) and number(v) is not None and c[len(prefix):] in sizes)
+            if pts:
+                ax.plot(*zip(*pts), marker="o", ms=4, color=shade, label=row["case"])
+        ax.set_xscale("log")
+        ax.set_xlabel("nominal diameter of the class (m)")
+        ax.set_ylabel("mean height above the bed / d")
+        ax.set_title("Segregation class by class in the deposit")
+        ax.legend(fontsize=7)
+        save(fig, out, "segregation_by_class", written)
+
+
+def nominal_diameters(case_dir):
+    """Each species' nominal diameter, from a case's resolved scene (tomllib, Python 3.11)."""
+    import tomllib
+    try:
+        with open(os.path.join(case_dir, "scene.resolved.toml"), "rb") as f:
+            species = tomllib.load(f)["species"]
+    except (OSError, KeyError):
+        return {}
+    return {n: t["diameter"] if "diameter" in t else math.sqrt(t["min"] * t["max"]) for n, t in species.items()}
 
 
 # The thesis's numbers for the deposit figures of each size ratio.

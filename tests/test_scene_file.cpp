@@ -167,7 +167,8 @@ TEST(SceneFile, ResolvedSceneReadsBackTheSame) {
 }
 
 TEST(SceneFile, ExampleScenesAllRead) {
-  for (const char* name : {"quick", "thesis_8_33_25", "thesis_4_40", "thesis_3_60", "thesis_2_50"}) {
+  for (const char* name : {"quick", "thesis_8_33_25", "thesis_4_40", "thesis_3_60", "thesis_2_50",
+                           "polydisperse_lognormal", "polydisperse_three"}) {
     const std::string path = std::string(RUNOUT_SOURCE_DIR) + "/examples/" + name + ".toml";
     EXPECT_NO_THROW(derive_setup(io::read_scene_file(path), path)) << path;
   }

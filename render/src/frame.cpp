@@ -180,7 +180,8 @@ void FrameMaker::colour_discs(const World& world) {
         c = viridis(std::hypot(p.vx[k], p.vy[k]) / sqrt_gd / speed_limit_);
         break;
       case ColorMode::layer:
-        c = layer[k] ? palette::kSmall : (s == setup_.largest_species ? palette::kMutedLarge : palette::kMutedSmall);
+        // The layer is the smallest class (measure.hpp); every larger disc is the muted blue.
+        c = layer[k] ? palette::kSmall : (s == setup_.roles.small ? palette::kMutedSmall : palette::kMutedLarge);
         break;
     }
     discs_.add(p.x[k], p.y[k], p.radius[k], p.angle[k], c);
@@ -219,8 +220,11 @@ std::string FrameMaker::species_label(int s) const {
 
 std::vector<std::pair<Rgba, std::string>> FrameMaker::legend_entries() const {
   std::vector<std::pair<Rgba, std::string>> entries;
-  if (options_.color == ColorMode::layer)
-    return {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"}, {palette::kMutedLarge, "large"}};
+  if (options_.color == ColorMode::layer) {
+    const bool many = std::count_if(setup_.counts.begin(), setup_.counts.end(), [](int c) { return c > 0; }) > 2;
+    return {{palette::kSmall, "basal layer"}, {palette::kMutedSmall, "other small"},
+            {palette::kMutedLarge, many ? "larger classes" : "large"}};
+  }
   if (options_.color != ColorMode::species) return entries;
   for (std::size_t s = 0; s < scene_.species.size(); ++s)
     if (setup_.counts[s] > 0) entries.push_back({species_colour_[s], species_label(static_cast<int>(s))});
