@@ -31,13 +31,13 @@ struct Window {
   void add(double x, double y) { x0 = std::min(x0, x); y0 = std::min(y0, y); x1 = std::max(x1, x); y1 = std::max(y1, y); }
 };
 
-// The flow's extent in one state: every disc edge, except that the farthest 0.2 % of discs
-// along x (lone discs rolling ahead) do not stretch the strip.
+// The flow's extent in one state: every disc edge, except that the farthest 1 % of discs
+// along x (lone discs rolling ahead, on to the end wall) do not stretch the strip.
 void add_flow(Window& w, const Particles& p) {
   if (p.size() == 0) return;
   std::vector<double> front(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) front[k] = p.x[k] + p.radius[k];
-  const std::size_t at = static_cast<std::size_t>(0.998 * (front.size() - 1));
+  const std::size_t at = static_cast<std::size_t>(0.99 * (front.size() - 1));
   std::nth_element(front.begin(), front.begin() + at, front.end());
   const double reach = front[at];
   for (std::size_t k = 0; k < p.size(); ++k)

@@ -355,7 +355,7 @@ def study_frames(folder, out, results, minima, written):
             ax.set_ylabel("y / D", fontsize=8)
             ax.tick_params(labelsize=7)
         axes[-1, 0].set_xlabel("x / D (0 at the foot of the incline)")
-        legend(fig, pics[0][1], loc="upper right", ncol=len(pics[0][1]["legend"]))
+        legend(fig, pics[0][1], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=len(pics[0][1]["legend"]))
         fig.suptitle(title, x=0.02, ha="left", fontsize=10)
         fig.tight_layout()
         return fig
@@ -388,7 +388,8 @@ def study_frames(folder, out, results, minima, written):
     # Fig. 3.4 is the thesis's D/d = 8.33, 25 % case: the nearest one of this sweep.
     def distance(case):
         r = rows.get(case, {})
-        return (abs((number(r.get("ratio")) or 8.33) - 8.33), abs((number(r.get("small_share")) or 25) - 25), case)
+        ratio, share = number(r.get("ratio")), number(r.get("small_share"))
+        return (abs(ratio - 8.33) if ratio is not None else 0, abs(share - 25) if share is not None else 0, case)
 
     if with_strip:
         best = min(with_strip, key=distance)
@@ -432,7 +433,7 @@ def study_frames(folder, out, results, minima, written):
             ax.set_ylabel("y / D", fontsize=8)
             ax.tick_params(labelsize=7)
         axes[-1, 0].set_xlabel("(x − x_c) / D, from the deposit's centroid (*)")
-        legend(fig, pics[0][1][1], loc="upper right", ncol=3)
+        legend(fig, pics[0][1][1], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
         number_ = DEPOSIT_FIGURES.get(ratio)
         head = f"Fig. {number_.replace('_', '.')}: " if number_ else ""
         which = f" for D/d = {ratio}" if number(ratio) is not None else ""
