@@ -123,7 +123,8 @@ def main():
         # the segregation class by class; the frames and the report as for the thesis.
         minima = ["ratio,share_min,bracket_low,bracket_high,mu_min_mean,mu_min_2se,at_edge"]
         other_figures(a.dir, out, points, results, written)
-    strips = study_frames(a.dir, out, results, minima, written)
+    points_axes = list(points[0])[: list(points[0]).index("n")] if points and "n" in points[0] else []
+    strips = study_frames(a.dir, out, results, minima, written, points_axes)
     report(a.dir, out, points, results, [w for w in written if w.endswith(".png")], minima, strips)
     for path in written:
         print(path)
@@ -182,7 +183,10 @@ def thesis_figures(folder, out, points, results, written):
     ax.set_xlabel("size ratio D/d")
     ax.set_ylabel("%A_p,m (share of the lowest μ)")
     ax.set_title("Fig. 4.2: the share of least friction, bracketed by its neighbours")
-    ax.legend(fontsize=8)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+    else:  # no D/d axis: nothing to place against D/d
+        ax.text(0.5, 0.5, "no D/d axis in this sweep", transform=ax.transAxes, ha="center", color="0.4")
     save(fig, out, "fig4_2_share_min_vs_ratio", written)
     with open(os.path.join(folder, "minimum.csv.tmp"), "w") as f:
         f.write("\n".join(minima) + "\n")
@@ -317,7 +321,7 @@ def nominal_diameters(case_dir):
 DEPOSIT_FIGURES = {"8.33": "4_7", "4": "4_8", "3": "4_9", "2": "4_10"}
 
 
-def study_frames(folder, out, results, minima, written):
+def study_frames(folder, out, results, minima, written, points_axes=()):
     """Fig. 3.4, a strip per case and the deposit figures, from the pictures in out/frames.
     Returns the per-case strips (path, case) for the report."""
     import matplotlib.image as mpimg
@@ -355,22 +359,30 @@ def study_frames(folder, out, results, minima, written):
             ax.set_ylabel("y / D", fontsize=8)
             ax.tick_params(labelsize=7)
         axes[-1, 0].set_xlabel("x / D (0 at the foot of the incline)")
-        legend(fig, pics[0][1], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=len(pics[0][1]["legend"]))
+        legend(fig, pics[0][1], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=min(3, len(pics[0][1]["legend"])))
         fig.suptitle(title, x=0.02, ha="left", fontsize=10)
         fig.tight_layout()
         return fig
 
     rows = {r["case"]: r for r in results}
 
+    # The sweep's axes, as results.csv gives them: its columns between "case" and the first
+    # number of the summaries (points.csv's before "n", and the seed).
+    axes = [k for k in (list(results[0])[1:] if results else []) if k in ("ratio", "small_share", "seed") or
+            (k in points_axes)]
+
     def label(case):
         r = rows.get(case, {})
         parts = []
-        if "ratio" in r:
-            parts.append(f"D/d = {r['ratio']}")
-        if "small_share" in r:
-            parts.append(f"%A_p = {float(r['small_share']):g}")
-        if "seed" in r:
-            parts.append(f"seed {r['seed']}")
+        for k in axes:
+            if k == "ratio":
+                parts.append(f"D/d = {r[k]}")
+            elif k == "small_share":
+                parts.append(f"%A_p = {float(r[k]):g}")
+            elif k == "seed":
+                parts.append(f"seed {r[k]}")
+            else:
+                parts.append(f"{k} = {r[k]}")
         return ", ".join(parts) or case
 
     strips = []
@@ -411,38 +423,59 @@ def study_frames(folder, out, results, minima, written):
         key = r.get("ratio", "—")
         if share not in by_ratio[key] or seed < by_ratio[key][share][0]:
             by_ratio[key][share] = (seed, case)
-    for ratio, cases in sorted(by_ratio.items(), key=lambda kv: ratio_key(kv[0])):
-        shares = sorted(cases)
-        m = share_min.get(ratio)
-        k = shares.index(m) if m in shares else len(shares) // 2
-        lo = max(0, min(k - 1, len(shares) - 3))
-        chosen = shares[lo:lo + 3]
-        pics = [(s, picture(frames[cases[s][1]]["deposit"]), frames[cases[s][1]]) for s in chosen]
+    def deposits(panels, title, name):
+        """One panel per (title, case): the deposit around its centroid (*), the layer shaded."""
+        pics = [(t, picture(frames[case]["deposit"]), frames[case]) for t, case in panels]
         heights = [p[1][0].shape[0] / p[1][0].shape[1] for p in pics]
-        fig, axes = plt.subplots(len(pics), 1, figsize=(8.0, 0.6 + sum(8.0 * h + 0.5 for h in heights)),
-                                 squeeze=False, gridspec_kw={"height_ratios": heights})
-        for j, (ax, (share, (img, info), c)) in enumerate(zip(axes[:, 0], pics)):
+        fig, axes_ = plt.subplots(len(pics), 1, figsize=(8.0, 0.6 + sum(8.0 * h + 0.5 for h in heights)),
+                                  squeeze=False, gridspec_kw={"height_ratios": heights})
+        for j, (ax, (t, (img, info), c)) in enumerate(zip(axes_[:, 0], pics)):
             D = c["large_diameter"]
             cx, cy = c["deposit"]["centroid"]
             x0, x1, y0, y1 = info["extent"]
             ax.imshow(img, extent=((x0 - cx) / D, (x1 - cx) / D, y0 / D, y1 / D), interpolation="lanczos")
             ax.plot([0], [cy / D], marker="*", ms=14, color="black", mec="white", mew=0.8, ls="none")
             ax.grid(False)
-            at = " = %A_p,m" if m is not None and share == m else ""
-            ax.set_title(f"({chr(ord('a') + j)}) %A_p = {share:g}{at}", loc="left", fontsize=9)
+            ax.set_title(f"({chr(ord('a') + j)}) {t}", loc="left", fontsize=9)
             ax.set_ylabel("y / D", fontsize=8)
             ax.tick_params(labelsize=7)
-        axes[-1, 0].set_xlabel("(x − x_c) / D, from the deposit's centroid (*)")
+        axes_[-1, 0].set_xlabel("(x − x_c) / D, from the deposit's centroid (*)")
         legend(fig, pics[0][1][1], loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3)
+        fig.suptitle(title, x=0.02, ha="left", fontsize=10)
+        fig.tight_layout()
+        save(fig, out, name, written)
+
+    for ratio, cases in sorted(by_ratio.items(), key=lambda kv: ratio_key(kv[0])):
+        shares = sorted(cases)
+        m = share_min.get(ratio)
+        k = shares.index(m) if m in shares else len(shares) // 2
+        lo = max(0, min(k - 1, len(shares) - 3))
+        panels = [(f"%A_p = {sh:g}" + (" = %A_p,m" if m is not None and sh == m else ""), cases[sh][1])
+                  for sh in shares[lo:lo + 3]]
         number_ = DEPOSIT_FIGURES.get(ratio)
         head = f"Fig. {number_.replace('_', '.')}: " if number_ else ""
         which = f" for D/d = {ratio}" if number(ratio) is not None else ""
-        fig.suptitle(f"{head}the deposit{which}, its basal layer of small discs highlighted",
-                     x=0.02, ha="left", fontsize=10)
-        fig.tight_layout()
         clean = str(ratio).replace(".", "_")
-        save(fig, out, f"fig{number_}_deposit_Dd{clean}" if number_ else
-             f"deposit_Dd{clean}" if number(ratio) is not None else "deposit", written)
+        deposits(panels, f"{head}the deposit{which}, its basal layer of small discs highlighted",
+                 f"fig{number_}_deposit_Dd{clean}" if number_ else
+                 f"deposit_Dd{clean}" if number(ratio) is not None else "deposit")
+
+    # A sweep not over %A_p: the deposits of the first seed along its first axis (up to four).
+    if not by_ratio and points_axes:
+        key = points_axes[0]
+        first = {}
+        for case, c in frames.items():
+            r = rows.get(case)
+            if not r or "deposit" not in c or number(r.get(key)) is None:
+                continue
+            seed = number(r.get("seed", "0")) or 0
+            v = float(r[key])
+            if v not in first or seed < first[v][0]:
+                first[v] = (seed, case)
+        chosen = sorted(first)[:4]
+        if chosen:
+            deposits([(f"{key} = {v:g}", first[v][1]) for v in chosen],
+                     "The deposits around their centroids, the basal layer (smallest class) highlighted", "deposits")
     return strips
 
 
