@@ -97,54 +97,58 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (std::int32_t k = 0; k < n; ++k) cell_disc_[cursor_[disc_cell_[k]]++] = k;
 
-    // ---- disc pairs: each thread a contiguous block of i ----
-    thread_found_.resize(threads);
+    // ---- disc pairs ----
+    // Each pair is found once, from its larger disc (equal radii: from the lower index), which
+    // searches the cells within its own diameter plus the skin: a small disc no longer scans
+    // the wide stencil a large neighbour needs (D/d = 8: a fifth of the candidates). The pairs
+    // are then put in the rows of their lower index, each row sorted by j, so the list is the
+    // same as a search from every i would give, whatever the thread count.
     thread_j_.resize(threads);
 #pragma omp parallel num_threads(threads)
     {
       const int t = omp_get_thread_num();
       const auto [lo, hi] = block(n, t, omp_get_num_threads());
-      auto& out_j = thread_j_[t];
-      out_j.clear();
-      auto& found = thread_found_[t];
-      for (std::int32_t i = lo; i < hi; ++i) {
-        const double reach = p.radius[i] + rmax + skin;
+      auto& out = thread_j_[t];  // (lower, higher) index pairs, flattened
+      out.clear();
+      for (std::int32_t a = lo; a < hi; ++a) {
+        const double ra = p.radius[a];
         const std::int32_t span = static_cast<std::int32_t>(
-            std::min(std::ceil(reach * inv_cell), static_cast<double>(std::max(ncx, ncy))));
-        const std::int32_t ci = disc_cell_[i] % ncx, cj = disc_cell_[i] / ncx;
-        found.clear();
+            std::min(std::ceil((2 * ra + skin) * inv_cell), static_cast<double>(std::max(ncx, ncy))));
+        const std::int32_t ci = disc_cell_[a] % ncx, cj = disc_cell_[a] / ncx;
         for (std::int32_t gy = std::max(0, cj - span); gy <= std::min(ncy - 1, cj + span); ++gy)
-          for (std::int32_t gx = std::max(0, ci - span); gx <= std::min(ncx - 1, ci + span);
-               ++gx) {
+          for (std::int32_t gx = std::max(0, ci - span); gx <= std::min(ncx - 1, ci + span); ++gx) {
             const std::int32_t c = gy * ncx + gx;
             for (std::int32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
-              const std::int32_t j = cell_disc_[q];
-              if (j <= i) continue;
-              const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
-              const double cut = p.radius[i] + p.radius[j] + skin;
-              if (dx * dx + dy * dy < cut * cut) found.push_back(j);
+              const std::int32_t b = cell_disc_[q];
+              const double rb = p.radius[b];
+              if (rb > ra || (rb == ra && b <= a)) continue;  // found from b
+              const double dx = p.x[b] - p.x[a], dy = p.y[b] - p.y[a];
+              const double cut = ra + rb + skin;
+              if (dx * dx + dy * dy < cut * cut) {
+                out.push_back(std::min(a, b));
+                out.push_back(std::max(a, b));
+              }
             }
           }
-        // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
-        for (std::size_t a = 1; a < found.size(); ++a)
-          for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
-        pairs.row_start[i + 1] = static_cast<std::int32_t>(found.size());
-        out_j.insert(out_j.end(), found.begin(), found.end());
       }
     }
+    for (int t = 0; t < threads; ++t)
+      for (std::size_t q = 0; q < thread_j_[t].size(); q += 2) ++pairs.row_start[thread_j_[t][q] + 1];
     std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
     const auto np = pairs.row_start[n];
     pairs.i.resize(np);
     pairs.j.resize(np);
-    {
-      std::int32_t at = 0;
-      for (int t = 0; t < threads; ++t) {
-        std::copy(thread_j_[t].begin(), thread_j_[t].end(), pairs.j.begin() + at);
-        at += static_cast<std::int32_t>(thread_j_[t].size());
-      }
-      for (std::int32_t i = 0; i < n; ++i)
-        std::fill(pairs.i.begin() + pairs.row_start[i], pairs.i.begin() + pairs.row_start[i + 1],
-                  i);
+    cursor_.assign(pairs.row_start.begin(), pairs.row_start.end() - 1);
+    for (int t = 0; t < threads; ++t)
+      for (std::size_t q = 0; q < thread_j_[t].size(); q += 2) pairs.j[cursor_[thread_j_[t][q]]++] = thread_j_[t][q + 1];
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t i = 0; i < n; ++i) {
+      // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
+      std::int32_t* row = pairs.j.data() + pairs.row_start[i];
+      const std::int32_t len = pairs.row_start[i + 1] - pairs.row_start[i];
+      for (std::int32_t x = 1; x < len; ++x)
+        for (std::int32_t y = x; y > 0 && row[y - 1] > row[y]; --y) std::swap(row[y - 1], row[y]);
+      std::fill(pairs.i.begin() + pairs.row_start[i], pairs.i.begin() + pairs.row_start[i + 1], i);
     }
 
     // ---- disc–wall pairs: same blocking as the disc pairs ----

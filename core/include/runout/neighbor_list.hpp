@@ -49,7 +49,7 @@ class NeighborSearch {
  private:
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
-  std::vector<std::vector<std::int32_t>> thread_found_, thread_j_, thread_walls_;
+  std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged
   std::vector<std::int32_t> cursor_;
   PairContacts old_pairs_;
   WallContacts old_walls_;
