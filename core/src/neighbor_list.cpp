@@ -75,10 +75,10 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // would make the grid meaningless (a NaN or a coordinate beyond ~1e300 m loops or overflows).
     if (!finite || !std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin) || !(rmin > 0))
       throw NumericalError("neighbour search: disc positions or radii are not finite");
-    double cell = std::max({2 * rmin + skin, (2 * rmax + skin) / 3.0, 1e-12});
+    double cell = std::max(2 * rmin + skin, 1e-12);
     // Counted in floating point: a stray disc far away must neither overflow nor blow memory.
     auto cells_along = [&](double lo, double hi) { return std::floor((hi - lo) / cell) + 1; };
-    const double max_cells = 4.0 * n + 1024;
+    const double max_cells = std::max(16.0 * n, 1048576.0);
     while (cells_along(xmin, xmax) * cells_along(ymin, ymax) > max_cells) cell *= 1.5;
     const auto ncx = static_cast<std::int32_t>(cells_along(xmin, xmax));
     const auto ncy = static_cast<std::int32_t>(cells_along(ymin, ymax));
@@ -110,26 +110,31 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       const auto [lo, hi] = block(n, t, omp_get_num_threads());
       auto& out = thread_j_[t];  // (lower, higher) index pairs, flattened
       out.clear();
+      // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
+      // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
+      // A grid row's cells are contiguous in cell_disc_, so each row is one run of discs.
+      auto cell_of = [&](double v, double v0, std::int32_t nc) {
+        return static_cast<std::int32_t>(std::clamp(std::floor((v - v0) * inv_cell), 0.0, nc - 1.0));
+      };
       for (std::int32_t a = lo; a < hi; ++a) {
-        const double ra = p.radius[a];
-        const std::int32_t span = static_cast<std::int32_t>(
-            std::min(std::ceil((2 * ra + skin) * inv_cell), static_cast<double>(std::max(ncx, ncy))));
-        const std::int32_t ci = disc_cell_[a] % ncx, cj = disc_cell_[a] / ncx;
-        for (std::int32_t gy = std::max(0, cj - span); gy <= std::min(ncy - 1, cj + span); ++gy)
-          for (std::int32_t gx = std::max(0, ci - span); gx <= std::min(ncx - 1, ci + span); ++gx) {
-            const std::int32_t c = gy * ncx + gx;
-            for (std::int32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
-              const std::int32_t b = cell_disc_[q];
-              const double rb = p.radius[b];
-              if (rb > ra || (rb == ra && b <= a)) continue;  // found from b
-              const double dx = p.x[b] - p.x[a], dy = p.y[b] - p.y[a];
-              const double cut = ra + rb + skin;
-              if (dx * dx + dy * dy < cut * cut) {
-                out.push_back(std::min(a, b));
-                out.push_back(std::max(a, b));
-              }
+        const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
+        const double reach = 2 * ra + skin;
+        const std::int32_t gx0 = cell_of(xa - reach, xmin, ncx), gx1 = cell_of(xa + reach, xmin, ncx);
+        const std::int32_t gy0 = cell_of(ya - reach, ymin, ncy), gy1 = cell_of(ya + reach, ymin, ncy);
+        for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
+          const std::int32_t q_end = cell_start_[gy * ncx + gx1 + 1];
+          for (std::int32_t q = cell_start_[gy * ncx + gx0]; q < q_end; ++q) {
+            const std::int32_t b = cell_disc_[q];
+            const double rb = p.radius[b];
+            if (rb > ra || (rb == ra && b <= a)) continue;  // found from b
+            const double dx = p.x[b] - xa, dy = p.y[b] - ya;
+            const double cut = ra + rb + skin;
+            if (dx * dx + dy * dy < cut * cut) {
+              out.push_back(std::min(a, b));
+              out.push_back(std::max(a, b));
             }
           }
+        }
       }
     }
     for (int t = 0; t < threads; ++t)
