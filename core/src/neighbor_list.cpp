@@ -137,15 +137,42 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         }
       }
     }
-    for (int t = 0; t < threads; ++t)
-      for (std::size_t q = 0; q < thread_j_[t].size(); q += 2) ++pairs.row_start[thread_j_[t][q] + 1];
+    // Binned by a counting sort in parallel: each thread counts its pairs per row, each row's
+    // start is the sum over threads, and each thread writes its pairs from its own offset in
+    // the row (the rows are sorted after, so the order of the writes does not matter).
+    thread_count_.resize(threads);
+#pragma omp parallel num_threads(threads)
+    {
+      auto& count = thread_count_[omp_get_thread_num()];
+      count.assign(static_cast<std::size_t>(n), 0);
+      const auto& found = thread_j_[omp_get_thread_num()];
+      for (std::size_t q = 0; q < found.size(); q += 2) ++count[found[q]];
+    }
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t r = 0; r < n; ++r) {
+      std::int32_t len = 0;
+      for (int t = 0; t < threads; ++t) len += thread_count_[t][r];
+      pairs.row_start[r + 1] = len;
+    }
     std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
     const auto np = pairs.row_start[n];
     pairs.i.resize(np);
     pairs.j.resize(np);
-    cursor_.assign(pairs.row_start.begin(), pairs.row_start.end() - 1);
-    for (int t = 0; t < threads; ++t)
-      for (std::size_t q = 0; q < thread_j_[t].size(); q += 2) pairs.j[cursor_[thread_j_[t][q]]++] = thread_j_[t][q + 1];
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t r = 0; r < n; ++r) {
+      std::int32_t at = pairs.row_start[r];
+      for (int t = 0; t < threads; ++t) {
+        const std::int32_t c = thread_count_[t][r];
+        thread_count_[t][r] = at;  // now the thread's cursor in row r
+        at += c;
+      }
+    }
+#pragma omp parallel num_threads(threads)
+    {
+      auto& cursor = thread_count_[omp_get_thread_num()];
+      const auto& found = thread_j_[omp_get_thread_num()];
+      for (std::size_t q = 0; q < found.size(); q += 2) pairs.j[cursor[found[q]]++] = found[q + 1];
+    }
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int32_t i = 0; i < n; ++i) {
       // Rows are short (a handful of neighbours): insertion sort beats std::sort here.

@@ -50,6 +50,7 @@ class NeighborSearch {
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
   std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged
+  std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
   std::vector<std::int32_t> cursor_;
   PairContacts old_pairs_;
   WallContacts old_walls_;
