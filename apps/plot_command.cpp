@@ -61,8 +61,16 @@ int plot_command(const PlotOptions& o) {
   const std::string figures = o.out.empty() ? o.dir + "/figures" : o.out;
   if (o.frames) {
     // The pictures of the study come first: the script lays them out and puts them in the report.
-    const int n = render_study_frames(o.dir, figures + "/frames");
-    std::fprintf(stderr, "runout plot: %d study frames drawn in %s/frames\n", n, figures.c_str());
+    // Without the picture module (a build without OSMesa) the figures are still drawn, and
+    // the message says what is missing.
+    try {
+      const int n = render_study_frames(o.dir, figures + "/frames");
+      std::fprintf(stderr, "runout plot: %d study frames drawn in %s/frames\n", n, figures.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "runout plot: the study's frames were not drawn: %s\n", e.what());
+      std::error_code ec;
+      fs::remove(figures + "/frames/frames.json", ec);  // no stale list of pictures
+    }
   }
   std::vector<std::string> args = {o.dir, "--out", figures};
   return run_plot_script(o.self, args);

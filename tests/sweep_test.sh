@@ -122,5 +122,11 @@ bad_sweep other_sweep 2 "holds another sweep" $'base = "tiny_pile.toml"\n[axes]\
 out=$("$bin" sweep "$sweep" --out "$work/local" --case 9 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "neither a case name nor an index" <<<"$out" && ok || bad "--case 9: exit $rc: $out"
 
+# Last (it rewrites DIR/report.html): without the picture module the figures are still drawn,
+# and the message says the frames are not.
+out=$(RUNOUT_PICTURES_MODULE="$work/none.so" "$bin" plot "$work/local" --out "$work/nomodule" 2>&1) &&
+  grep -q "frames were not drawn" <<<"$out" && [ "$(ls "$work/nomodule"/*.png | wc -l)" -eq 6 ] && ok ||
+  bad "plot without the picture module: $out"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
