@@ -66,6 +66,14 @@ struct SweepOptions {
   std::string cache_dir;
   std::string self;          // this binary, for the cases it starts
 };
+struct DeriveOptions {
+  std::string scene_path;  // empty: the embedded quick pile
+  std::vector<std::string> overrides;
+  bool json = false;
+};
+// `runout derive` (derive_command.cpp): the setup table of SPEC §3-4 for a scene.
+int derive_command(const DeriveOptions& o);
+
 struct PlotOptions {
   std::string dir;   // a sweep folder
   std::string out;   // default DIR/figures

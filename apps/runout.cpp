@@ -86,6 +86,13 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("--out,-o", plot.out, "folder for the figures (default DIR/figures)");
   plot_cmd->add_flag("!--no-frames", plot.frames, "skip the study's frames (the flow strip and the deposits)");
 
+  runout::app::DeriveOptions derive;
+  auto* derive_cmd = cli.add_subcommand("derive", "print a scene's derived stiffnesses, collision periods, time step and disc counts");
+  derive_cmd->add_option("scene", derive.scene_path, "scene file (TOML); default: the embedded quick pile")
+      ->check(CLI::ExistingFile);
+  derive_cmd->add_option("--set", derive.overrides, "override a scene key")->take_all()->allow_extra_args(false);
+  derive_cmd->add_flag("--json", derive.json, "print JSON instead of the table");
+
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
@@ -114,6 +121,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return runout::app::run_command(run);
     if (*bench_cmd) return runout::app::bench_command(bench);
     if (*render_cmd) return runout::app::render_command(render);
+    if (*derive_cmd) return runout::app::derive_command(derive);
     if (*study_cmd) return runout::app::study_command(study);
     if (*plot_cmd) {
       plot.self = std::filesystem::canonical("/proc/self/exe").string();

@@ -128,6 +128,24 @@ if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
 fi
 check end_needs_snapshots 2 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
 
+# runout derive prints SPEC §3's check values for the thesis scenes (k_U/m* of the small pair,
+# dt, steps per t*), and the table in text.
+for case in "8_33_25 1.062e8 4.88e-5" "4_40 5.10e7 7.05e-5" "3_60 3.82e7 8.14e-5" "2_50 2.55e7 9.96e-5"; do
+  set -- $case
+  "$bin" derive "$src/examples/thesis_$1.toml" --json >"$work/derive.json" &&
+  /usr/bin/python3 - "$work/derive.json" "$2" "$3" <<'PY' || { echo "FAIL derive thesis_$1"; fail=$((fail + 1)); }
+import json, sys
+j = json.load(open(sys.argv[1]))
+row = next(r for r in j["contacts"] if r["pair"] == "small among small")
+assert abs(row["k_unload_over_m_star"] / float(sys.argv[2]) - 1) < 2e-3, row
+assert abs(j["dt"] / float(sys.argv[3]) - 1) < 2e-3, j["dt"]
+assert round(j["steps_per_t_star"]) == 2266, j["steps_per_t_star"]
+assert abs(row["k_load"] / row["k_unload"] - 0.04) < 1e-12 and row["k_tangential"] == row["k_load"], row
+PY
+done
+check derive_text 0 '2266 steps per t*' -- "$bin" derive "$src/examples/thesis_4_40.toml"
+check derive_bad_key 1 'contact.normal_model' -- "$bin" derive --set contact.normal_model=foo
+
 # A tiny polydisperse pile (lognormal by area in three classes) runs to rest; its summary
 # reports every class, and a saved state renders.
 cat >"$work/poly.toml" <<'EOF'

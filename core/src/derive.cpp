@@ -133,31 +133,38 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
   return t;
 }
 
+CollisionPeriods collision_periods(const ContactTable& table, std::span<const SpeciesDef> species,
+                                   double density, int a, int b) {
+  // The smallest disc of each species with the species' stiffness: the shortest period.
+  const double ra = 0.5 * smallest_diameter(species[a]);
+  const double mass = sphere_mass(ra, density), inertia = sphere_inertia(mass, ra);
+  const PairCoefficients& c = b < 0 ? table.wall[a] : table.between(a, b);
+  CollisionPeriods out;
+  if (b < 0) {
+    out.ring = 6.0;  // as stiff as an equal-disc ring (wall k = disc k)
+  } else {
+    // How many b-discs fit around one a-disc: 6 for equal sizes.
+    const double rb = 0.5 * smallest_diameter(species[b]);
+    out.ring = std::floor(kPi / std::asin(rb / (ra + rb)) + 1e-9);
+  }
+  const double k_n = c.normal_stiffness_for_dt, k_s = c.tangential.k_tangential;
+  // Half of the ring acts along any one direction (6 -> 3 k, SPEC §3).
+  out.translational = 2 * kPi * std::sqrt(mass / (0.5 * out.ring * (k_n + k_s)));
+  out.rotational = 2 * kPi * std::sqrt(inertia / (out.ring * k_s * ra * ra));
+  return out;
+}
+
 double minimum_collision_period(const ContactTable& table, std::span<const SpeciesDef> species,
                                 double density, const std::vector<char>& present) {
   double tau = std::numeric_limits<double>::infinity();
   const int n = table.species_count;
-  auto consider = [&](double mass, double radius, const PairCoefficients& c, double ring) {
-    const double inertia = sphere_inertia(mass, radius);
-    const double k_n = c.normal_stiffness_for_dt, k_s = c.tangential.k_tangential;
-    // Ring of `ring` neighbours: half of them act along any one direction (6 -> 3 k, SPEC §3).
-    const double tau_trans = 2 * kPi * std::sqrt(mass / (0.5 * ring * (k_n + k_s)));
-    const double tau_rot = 2 * kPi * std::sqrt(inertia / (ring * k_s * radius * radius));
-    tau = std::min({tau, tau_trans, tau_rot});
-  };
   for (int a = 0; a < n; ++a) {
     if (!present[a]) continue;
-    // The smallest disc of each species with the species' stiffness: the shortest period.
-    const double ra = 0.5 * smallest_diameter(species[a]);
-    const double ma = sphere_mass(ra, density);
-    for (int b = 0; b < n; ++b) {
-      if (!present[b]) continue;
-      const double rb = 0.5 * smallest_diameter(species[b]);
-      // How many b-discs fit around one a-disc: 6 for equal sizes.
-      const double ring = std::floor(kPi / std::asin(rb / (ra + rb)) + 1e-9);
-      consider(ma, ra, table.between(a, b), ring);
+    for (int b = -1; b < n; ++b) {
+      if (b >= 0 && !present[b]) continue;
+      const CollisionPeriods t = collision_periods(table, species, density, a, b);
+      tau = std::min({tau, t.translational, t.rotational});
     }
-    consider(ma, ra, table.wall[a], 6.0);  // as stiff as an equal-disc ring (wall k = disc k)
   }
   return tau;
 }

@@ -59,8 +59,17 @@ double sphere_inertia(double mass, double radius);      // 2/5 m r^2 (eq. 2.13)
 ContactTable derive_contact_table(const MaterialDef& material, const ContactDef& contact,
                                   std::span<const SpeciesDef> species, double gravity);
 
-// tau_min over the pairs of species present and their walls: translational and rotational
-// periods of a disc in a ring of N_surr neighbours (SPEC §3; N_surr = 6 for equal discs).
+// The translational and rotational periods of the smallest disc of species a in a ring of its
+// neighbours of species b (b < 0: a wall, as stiff as a ring of 6), SPEC §3: N_surr = 6 for
+// equal discs, more around a large disc.
+struct CollisionPeriods {
+  double translational = 0, rotational = 0;
+  double ring = 0;  // N_surr
+};
+CollisionPeriods collision_periods(const ContactTable& table, std::span<const SpeciesDef> species,
+                                   double density, int a, int b);
+
+// tau_min over the pairs of species present and their walls (collision_periods).
 double minimum_collision_period(const ContactTable& table, std::span<const SpeciesDef> species,
                                 double density, const std::vector<char>& present);
 
