@@ -198,10 +198,12 @@ double nice_below(double x) {
   return p;
 }
 
+// Labels people read: whole numbers as such, the rest to three significant digits
+// (d = 0.333 m, not 0.333333 m).
 std::string format_number(double v) {
   char buf[32];
   if (std::abs(v - std::round(v)) < 1e-9) std::snprintf(buf, sizeof buf, "%.0f", v);
-  else std::snprintf(buf, sizeof buf, "%g", v);
+  else std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
 }
 

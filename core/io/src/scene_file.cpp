@@ -1,8 +1,9 @@
 #include "runout/io/scene_file.hpp"
-#include "runout/size_distribution.hpp"
 
 #include <toml++/toml.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -11,6 +12,7 @@
 
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
+#include "runout/size_distribution.hpp"
 
 namespace runout::io {
 
@@ -24,11 +26,19 @@ constexpr std::pair<const char*, bool SeriesSelection::*> kSeriesNames[] = {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The shortest text that reads back as the same double (the -0.1 a user typed is "-0.1", not
+// -0.10000000000000001, and no two different values print alike); whole numbers in full.
 std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buf[48];
+  if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+  }
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 // A numeric interval with open or closed ends, printed the way a user reads it: "(0, 1]".
