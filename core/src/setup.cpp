@@ -117,11 +117,14 @@ SceneSetup derive_setup(const SceneDef& scene, const std::string& source) {
     if (s.counts[s.roles.large] == 0 || scene.species[k].diameter > scene.species[s.roles.large].diameter) s.roles.large = k;
   }
   // Explicit integrators are stable for omega dt < 2: dt <= tau / pi (SPEC §8 extremes).
-  if (scene.integration.dt_fraction > 1.0 / kPi)
+  if (scene.integration.dt_fraction > 1.0 / kPi) {
+    std::ostringstream value;  // 0.35, not 0.350000
+    value << scene.integration.dt_fraction;
     throw ConfigError(source, "integration.dt_fraction",
-                      "value " + std::to_string(scene.integration.dt_fraction) +
+                      "value " + value.str() +
                           " is beyond the stability limit of the explicit integrators, 1/pi = 0.318 "
                           "of tau_min (omega dt < 2); use at most 0.3 (default 0.1)");
+  }
   // The step is set by the species present: a %A_p = 0 pile has no small discs to resolve.
   std::vector<char> present(scene.species.size(), 0);
   bool any = false;
