@@ -262,7 +262,10 @@ int run_command(const RunOptions& o) {
   ctx.pile_from_cache = prepared.from_cache;
   ctx.preparation_seconds = prepared.seconds;
   ctx.settle = prepared.settle;
-  for (const auto& sp : scene.species) ctx.species_names.push_back(sp.name);
+  for (const auto& sp : scene.species) {
+    ctx.species_names.push_back(sp.name);
+    ctx.species_diameters.push_back(sp.diameter);
+  }
 
   // The results together, summary.json last: a folder with a summary is a complete result.
   publish_staged(folder);

@@ -287,13 +287,13 @@ def other_figures(folder, out, points, results, written):
         ax.set_title(f"friction against {key} (±2 SE over seeds)")
         save(fig, out, "mu_vs_" + key.replace(".", "_"), written)
     # Segregation per class: the deposit's mean height above the bed of each species against its
-    # nominal diameter (from each case's resolved scene), one line per case.
+    # nominal diameter (summary.json's diameters), one line per case.
     prefix = "mean_height_over_d."
     if results and sum(c.startswith(prefix) for c in results[0]) >= 3:
         fig, ax = plt.subplots()
         shades = plt.cm.viridis([0.85 * i / max(1, len(results) - 1) for i in range(len(results))])
         for row, shade in zip(results, shades):
-            sizes = nominal_diameters(os.path.join(folder, "cases", row["case"]))
+            sizes = {c[len("diameters."):]: number(v) for c, v in row.items() if c.startswith("diameters.")}
             pts = sorted((sizes[c[len(prefix):]], number(v)) for c, v in row.items()
                          if c.startswith(prefix) and number(v) is not None and c[len(prefix):] in sizes)
             if pts:
@@ -304,17 +304,6 @@ def other_figures(folder, out, points, results, written):
         ax.set_title("Segregation class by class in the deposit")
         ax.legend(fontsize=7)
         save(fig, out, "segregation_by_class", written)
-
-
-def nominal_diameters(case_dir):
-    """Each species' nominal diameter, from a case's resolved scene (tomllib, Python 3.11)."""
-    import tomllib
-    try:
-        with open(os.path.join(case_dir, "scene.resolved.toml"), "rb") as f:
-            species = tomllib.load(f)["species"]
-    except (OSError, KeyError):
-        return {}
-    return {n: t["diameter"] if "diameter" in t else math.sqrt(t["min"] * t["max"]) for n, t in species.items()}
 
 
 # The thesis's numbers for the deposit figures of each size ratio.

@@ -122,6 +122,13 @@ bad_sweep other_sweep 2 "holds another sweep" $'base = "tiny_pile.toml"\n[axes]\
 out=$("$bin" sweep "$sweep" --out "$work/local" --case 9 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "neither a case name nor an index" <<<"$out" && ok || bad "--case 9: exit $rc: $out"
 
+# A sweep not over %A_p (a polydisperse pile over sigma): mu against the axis, the segregation
+# class by class (each class's diameter from summary.json), the flow strip and the deposits.
+"$bin" sweep "$src/examples/sweeps/tiny_poly.toml" --out "$work/poly" --jobs 2 "${cache[@]}" 2>/dev/null &&
+  "$bin" plot "$work/poly" >/dev/null 2>&1 &&
+  [ "$(cd "$work/poly/figures" && ls mu_vs_species_grains_sigma.png segregation_by_class.png fig3_4_flow_sequence.png deposits.png 2>/dev/null | wc -l)" -eq 4 ] &&
+  head -1 "$work/poly/results.csv" | grep -q "diameters.grains_3" && ok || bad "polydisperse sweep figures: $(ls "$work/poly/figures" 2>&1)"
+
 # Last (it rewrites DIR/report.html): without the picture module the figures are still drawn,
 # and the message says the frames are not.
 out=$(RUNOUT_PICTURES_MODULE="$work/none.so" "$bin" plot "$work/local" --out "$work/nomodule" 2>&1) &&

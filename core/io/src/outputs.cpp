@@ -49,6 +49,10 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   for (std::size_t k = 0; k < r.mean_height_over_d.size() && k < c.species_names.size(); ++k)
     heights[c.species_names[k]] = number(r.mean_height_over_d[k]);
   j["mean_height_over_d"] = heights;
+  nlohmann::json diameters = nlohmann::json::object();
+  for (std::size_t k = 0; k < c.species_diameters.size() && k < c.species_names.size(); ++k)
+    diameters[c.species_names[k]] = c.species_diameters[k];
+  j["diameters"] = diameters;
   j["at_rest"] = r.at_rest;
   j["reached_end_time"] = r.reached_end_time;  // stopped by output.end_time (or --end-at-last-snapshot)
   j["t_star_rest"] = number(r.t_star_rest);

@@ -23,6 +23,7 @@ struct SummaryContext {
   double preparation_seconds = 0;
   std::optional<SettleReport> settle;  // an avalanche pile settled by this run or cached with it
   std::vector<std::string> species_names;
+  std::vector<double> species_diameters;  // nominal, m (a size class: the geometric mean of its bounds)
 };
 
 std::string summary_json(const RunResult& r, const SummaryContext& c);
