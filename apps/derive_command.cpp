@@ -9,6 +9,7 @@
 
 #include "prepare.hpp"
 #include "run_command.hpp"
+#include "runout/contact/registry.hpp"
 #include "runout/derive.hpp"
 #include "runout/io/scene_file.hpp"
 #include "runout/setup.hpp"
@@ -34,12 +35,14 @@ int derive_command(const DeriveOptions& o) {
   const double g = scene.integration.gravity;
   const int n = static_cast<int>(scene.species.size());
   const ContactTable& table = setup.table;
-  const NormalModel law = scene.contact.normal_model;
+  const std::string& law = scene.contact.normal_model;
 
   nlohmann::json j;
   j["scene"] = scene.name;
   j["source"] = source;
-  j["normal_model"] = io::to_string(law);
+  j["normal_model"] = law;
+  j["tangential_model"] = scene.contact.tangential_model;
+  j["rolling_model"] = scene.contact.rolling_model;
   j["unit_length_d"] = setup.unit_length;
   j["unit_time"] = setup.unit_time;
   j["tau_min"] = setup.tau_min;
@@ -63,18 +66,19 @@ int derive_command(const DeriveOptions& o) {
       row["m_star"] = c.reduced_mass;
       row["k_load"] = c.k_load;
       row["k_unload"] = c.k_unload;
-      row["k_tangential"] = c.tangential.k_tangential;
-      row["friction"] = c.tangential.friction;
+      row["k_tangential"] = c.k_tangential;
+      row["friction"] = c.friction;
       row["k_unload_over_m_star"] = c.k_unload / c.reduced_mass;  // s^-2, SPEC §3's check column
       // Dimensionless: k_U r* / (m* g) = (alphadot0 f / alphamax)^2.
       row["k_unload_dimensionless"] = c.k_unload * c.reduced_radius / (c.reduced_mass * g);
-      if (law == NormalModel::linear_dashpot) {
-        row["dashpot_k"] = c.linear_dashpot.k;
-        row["dashpot_damping"] = c.linear_dashpot.damping;
-      } else if (law == NormalModel::hertz) {
-        row["hertz_k"] = c.hertz.k;
-        row["hertz_damping"] = c.hertz.damping;
-      }
+      // A dashpot law's own constants (N/m or N/m^1.5, and N s/m or N s/m^1.25).
+      NormalLaws::with(law, [&](auto normal) {
+        const auto p = decltype(normal)::params(c);
+        if constexpr (requires { p.damping; }) {
+          row["normal_k"] = p.k;
+          row["normal_damping"] = p.damping;
+        }
+      });
       row["ring"] = t.ring;
       row["tau_trans"] = t.translational;
       row["tau_rot"] = t.rotational;
@@ -86,8 +90,9 @@ int derive_command(const DeriveOptions& o) {
     std::printf("%s\n", j.dump(1).c_str());
     return 0;
   }
-  std::printf("scene %s (%s), normal law %s, e_n %s (walls %s), mu %s (walls %s)\n", scene.name.c_str(),
-              source.c_str(), io::to_string(law), num(scene.material.restitution).c_str(),
+  std::printf("scene %s (%s), laws: normal %s, tangential %s, rolling %s; e_n %s (walls %s), mu %s (walls %s)\n",
+              scene.name.c_str(), source.c_str(), law.c_str(), scene.contact.tangential_model.c_str(),
+              scene.contact.rolling_model.c_str(), num(scene.material.restitution).c_str(),
               num(scene.material.wall_restitution).c_str(), num(scene.material.friction).c_str(),
               num(scene.material.wall_friction).c_str());
   std::printf("d = %s m (the unit of length), t* unit sqrt(d/g) = %s s\n", num(setup.unit_length).c_str(),
@@ -103,11 +108,10 @@ int derive_command(const DeriveOptions& o) {
                 num(row["k_unload"]).c_str(), num(row["k_tangential"]).c_str(),
                 num(row["k_unload_over_m_star"]).c_str(), num(row["k_unload_dimensionless"]).c_str(),
                 num(row["ring"]).c_str(), num(row["tau_trans"]).c_str(), num(row["tau_rot"]).c_str());
-  if (law != NormalModel::walton_braun)
-    for (const auto& row : j["contacts"])
-      std::printf("%-18s %s k = %s, damping = %s\n", row["pair"].get<std::string>().c_str(), io::to_string(law),
-                  num(row[law == NormalModel::hertz ? "hertz_k" : "dashpot_k"]).c_str(),
-                  num(row[law == NormalModel::hertz ? "hertz_damping" : "dashpot_damping"]).c_str());
+  for (const auto& row : j["contacts"])
+    if (row.contains("normal_k"))
+      std::printf("%-18s %s k = %s, damping = %s\n", row["pair"].get<std::string>().c_str(), law.c_str(),
+                  num(row["normal_k"]).c_str(), num(row["normal_damping"]).c_str());
   std::printf("\ntau_min = %s s (%s t*), dt = %s x tau_min = %s s, %s steps per t*\n", num(setup.tau_min).c_str(),
               num(setup.tau_min / setup.unit_time).c_str(), num(scene.integration.dt_fraction).c_str(),
               num(setup.dt).c_str(), num(setup.unit_time / setup.dt).c_str());

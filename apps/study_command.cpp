@@ -44,8 +44,8 @@ std::vector<Variant> study_variants() {
   for (double a : {0.02, 0.005, 0.0025})
     v.push_back({"design_max_overlap", std::to_string(a).substr(0, 6), [a](SceneDef& s) { s.contact.design_max_overlap = a; }});
   v.push_back({"integrator", "velocity_verlet", [](SceneDef& s) { s.integration.integrator = IntegratorKind::velocity_verlet; }});
-  v.push_back({"normal_model", "linear_dashpot (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::linear_dashpot; }, true});
-  v.push_back({"normal_model", "hertz (own pile)", [](SceneDef& s) { s.contact.normal_model = NormalModel::hertz; }, true});
+  v.push_back({"normal_model", "linear_dashpot (own pile)", [](SceneDef& s) { s.contact.normal_model = "linear_dashpot"; }, true});
+  v.push_back({"normal_model", "hertz (own pile)", [](SceneDef& s) { s.contact.normal_model = "hertz"; }, true});
   v.push_back({"reference", "dt 0.025 + overlap 0.0025", [](SceneDef& s) {
                  s.integration.dt_fraction = 0.025;
                  s.contact.design_max_overlap = 0.0025;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "runout/contact_law.hpp"
+#include "runout/contact/registry.hpp"
 #include "runout/setup.hpp"
 #include "test_helpers.hpp"
 
@@ -18,7 +18,7 @@ struct CollisionResult {
 };
 
 // Two discs of diameters d1, d2 approach head-on at closing speed 2 m/s, no gravity.
-CollisionResult collide(double d1, double d2, double e_n, NormalModel model,
+CollisionResult collide(double d1, double d2, double e_n, const std::string& model,
                         IntegratorKind integrator, double dt_fraction) {
   SceneDef s = testing::two_species_scene(d1, d2);
   s.material.restitution = e_n;
@@ -48,7 +48,7 @@ class Restitution : public ::testing::TestWithParam<std::tuple<double, double>> 
 
 TEST_P(Restitution, WaltonBraunGivesExactlyEn) {
   const auto [e_n, size_ratio] = GetParam();  // size ratio 2 -> mass ratio 8
-  const auto r = collide(1.0, 1.0 / size_ratio, e_n, NormalModel::walton_braun,
+  const auto r = collide(1.0, 1.0 / size_ratio, e_n, "walton_braun",
                          IntegratorKind::symplectic_euler, 0.005);
   EXPECT_NEAR(r.restitution, e_n, 1e-3);
 }
@@ -62,7 +62,7 @@ TEST_P(Restitution, DurationMatchesClosedForm) {
   const PairCoefficients& c = setup.table.between(0, 1);
   const double expected = kPi / 2 * (std::sqrt(c.reduced_mass / c.k_load) +
                                      std::sqrt(c.reduced_mass / c.k_unload));
-  const auto r = collide(d1, d2, e_n, NormalModel::walton_braun,
+  const auto r = collide(d1, d2, e_n, "walton_braun",
                          IntegratorKind::symplectic_euler, 0.005);
   EXPECT_NEAR(r.duration, expected, 2 * r.dt + 1e-3 * expected);
 }
@@ -74,20 +74,20 @@ INSTANTIATE_TEST_SUITE_P(BinaryCollision, Restitution,
 // At the default dt (tau_min / 10) the restitution is still close: the coarse default is
 // a measured trade (docs/accuracy.md), not an accident.
 TEST(BinaryCollision, DefaultStepStaysWithinTwoPercent) {
-  const auto r = collide(1.0, 1.0, 0.2, NormalModel::walton_braun,
+  const auto r = collide(1.0, 1.0, 0.2, "walton_braun",
                          IntegratorKind::symplectic_euler, 0.1);
   EXPECT_NEAR(r.restitution, 0.2, 0.02 * 0.2 + 0.01);
 }
 
 TEST(BinaryCollision, VelocityVerletAlsoGivesEn) {
-  const auto r = collide(1.0, 0.5, 0.5, NormalModel::walton_braun,
+  const auto r = collide(1.0, 0.5, 0.5, "walton_braun",
                          IntegratorKind::velocity_verlet, 0.005);
   EXPECT_NEAR(r.restitution, 0.5, 1e-3);
 }
 
 TEST(BinaryCollision, HertzDashpotIsTunedToEn) {
   for (double e : {0.2, 0.5, 0.9}) {
-    const auto r = collide(1.0, 1.0, e, NormalModel::hertz, IntegratorKind::velocity_verlet,
+    const auto r = collide(1.0, 1.0, e, "hertz", IntegratorKind::velocity_verlet,
                            0.005);
     EXPECT_NEAR(r.restitution, e, 5e-3) << "e_n = " << e;
   }
@@ -98,29 +98,41 @@ TEST(BinaryCollision, LinearDashpotIsTunedToEn) {
   // A dashpot sees the velocity of the previous half step: the error is first order in dt
   // (0.0056 at dt = tau_min/200, 0.0013 at tau_min/800), hence the fine step here.
   for (double e : {0.2, 0.5, 0.9}) {
-    const auto r = collide(1.0, 1.0, e, NormalModel::linear_dashpot,
+    const auto r = collide(1.0, 1.0, e, "linear_dashpot",
                            IntegratorKind::velocity_verlet, 0.001);
     EXPECT_NEAR(r.restitution, e, 2e-3) << "e_n = " << e;
   }
 }
 
+// A contact whose overlap is `overlap` and whose tangential slip over the step is `slip_step`.
+ContactKinematics at(double overlap, double slip_step = 0) {
+  ContactKinematics k;
+  k.overlap = overlap;
+  k.slip = slip_step;
+  k.dt = 1.0;
+  return k;
+}
+
 TEST(ContactLaw, WaltonBraunFollowsLoadingThenUnloadingLine) {
-  const WaltonBraun::Coefficients c{1.0, 25.0};  // e_n = 0.2
-  double om = 0;
-  EXPECT_DOUBLE_EQ(WaltonBraun::force(c, 0.01, 0, om), 0.01);  // loading: k_L overlap
+  const WaltonBraun::Params c{1.0, 25.0};  // e_n = 0.2
+  double om = 0, loss = 0;
+  EXPECT_DOUBLE_EQ(WaltonBraun::force(c, at(0.01), &om, loss), 0.01);  // loading: k_L overlap
   EXPECT_DOUBLE_EQ(om, 0.01);
   // Unloading from 0.01: F = k_U (overlap - overlap_0), overlap_0 = 0.01 (1 - 1/25) = 0.0096.
-  EXPECT_NEAR(WaltonBraun::force(c, 0.0098, 0, om), 25.0 * (0.0098 - 0.0096), 1e-15);
-  EXPECT_EQ(WaltonBraun::force(c, 0.0090, 0, om), 0.0);  // never tensile
+  EXPECT_NEAR(WaltonBraun::force(c, at(0.0098), &om, loss), 25.0 * (0.0098 - 0.0096), 1e-15);
+  EXPECT_EQ(WaltonBraun::force(c, at(0.0090), &om, loss), 0.0);  // never tensile
   EXPECT_DOUBLE_EQ(om, 0.01);
 }
 
 TEST(ContactLaw, CoulombSliderClipsTheSpring) {
-  const CundallStrack c{100.0, 0.5};
-  double spring = 0;
-  EXPECT_DOUBLE_EQ(tangential_force(c, 10.0, 0.01, spring), 1.0);  // stick: k_s delta
-  EXPECT_DOUBLE_EQ(tangential_force(c, 10.0, 0.10, spring), 5.0);  // slide: mu F_n
-  EXPECT_DOUBLE_EQ(spring, 0.05);                                   // clipped to mu F_n / k_s
+  const CundallStrack::Params c{100.0, 0.5};
+  double spring = 0, loss = 0;
+  EXPECT_DOUBLE_EQ(CundallStrack::force(c, at(0, 0.01), 10.0, &spring, loss), 1.0);  // stick: k_s delta
+  EXPECT_EQ(loss, 0.0);
+  EXPECT_DOUBLE_EQ(CundallStrack::force(c, at(0, 0.10), 10.0, &spring, loss), 5.0);  // slide: mu F_n
+  EXPECT_DOUBLE_EQ(spring, 0.05);  // clipped to mu F_n / k_s
+  // Slid 0.01 + 0.10 - 0.05 = 0.06 m at 5 N.
+  EXPECT_NEAR(loss, 5.0 * 0.06, 1e-14);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ TEST(DerivedParameters, MatchSpecTable) {
     EXPECT_NEAR(s.dt, row.dt, 0.005 * row.dt) << "d = " << row.d;
     EXPECT_NEAR(s.unit_time / s.dt, 2266.0, 1.0) << "d = " << row.d;
     EXPECT_DOUBLE_EQ(c.k_load, 0.04 * c.k_unload);           // k_L = e_n^2 k_U
-    EXPECT_DOUBLE_EQ(c.tangential.k_tangential, c.k_load);   // k_s = kratio k_L
+    EXPECT_DOUBLE_EQ(c.k_tangential, c.k_load);   // k_s = kratio k_L
   }
 }
 

@@ -100,8 +100,9 @@ TEST(Extremes, FrictionlessPileKeepsNoTangentialHistory) {
   const RunResult r = run.run();
   EXPECT_GT(w.pairs().size(), 0u);
   EXPECT_GT(w.wall_contacts().size(), 0u);
-  EXPECT_TRUE(w.pairs().tangential_spring.empty());
-  EXPECT_TRUE(w.wall_contacts().tangential_spring.empty());
+  // Only Walton–Braun's overlap_max: no tangential spring is kept.
+  EXPECT_EQ(w.history_width(), 1);
+  EXPECT_EQ(w.pairs().history.size(), w.pairs().size());
   for (std::size_t k = 0; k < w.particles().size(); ++k) ASSERT_EQ(w.particles().omega[k], 0.0) << "disc " << k;
   EXPECT_EQ(w.dissipation().friction, 0.0);
   EXPECT_GT(r.com_rest.x(), r.com_release.x());  // it flowed
@@ -109,7 +110,8 @@ TEST(Extremes, FrictionlessPileKeepsNoTangentialHistory) {
   SceneDef rough = testing::small_pile();
   World wr = build_settled_pile(rough, derive_setup(rough), 1);
   EXPECT_TRUE(wr.frictional());
-  EXPECT_EQ(wr.pairs().tangential_spring.size(), wr.pairs().size());
+  EXPECT_EQ(wr.history_width(), 2);
+  EXPECT_EQ(wr.pairs().history.size(), 2 * wr.pairs().size());
 }
 
 TEST(Extremes, SizeRatioTwentyPileSettlesAndFlows) {

@@ -30,7 +30,7 @@ TEST(Ledger, BinaryCollisionLosesOneMinusEnSquared) {
 // energy the no-tension cut throws away.
 TEST(Ledger, DashpotCollisionBalances) {
   SceneDef s = testing::two_species_scene(1.0, 1.0);
-  s.contact.normal_model = NormalModel::linear_dashpot;
+  s.contact.normal_model = "linear_dashpot";
   s.integration.dt_fraction = 0.002;
   s.particles = {testing::disc(0.0, 0.0, 1.0, 0, 1.0, 0.0), testing::disc(1.001, 0.0, 1.0, 1, -1.0, 0.0)};
   World w = testing::zero_gravity_world(s, true);

@@ -79,12 +79,12 @@ std::vector<double> held_disc(double skin, bool with_flyer, std::int64_t& rebuil
   std::vector<double> xs;
   double sum = 0;
   int n = 0;
-  const double k_s = w.table().wall[0].tangential.k_tangential;
+  const double k_s = w.table().wall[0].k_tangential;
   while (w.time() < 1.0) {
     w.step();
     xs.push_back(w.particles().x[0]);
     for (std::size_t q = 0; q < w.wall_contacts().size(); ++q)
-      if (w.wall_contacts().disc[q] == 0) { sum += std::abs(w.wall_contacts().tangential_spring[q]) * k_s; ++n; }
+      if (w.wall_contacts().disc[q] == 0) { sum += std::abs(w.wall_contacts().history[q * 2 + 1]) * k_s; ++n; }  // overlap_max, spring
   }
   rebuilds = w.profile().rebuilds;
   mean_spring_force = n ? sum / n : 0.0;

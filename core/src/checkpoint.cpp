@@ -40,8 +40,8 @@ void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int
                 const Contacts& c, std::size_t n, std::int64_t key_end, bool pair_rows,
                 const std::string& name) {
   auto bad = [&] { throw IoError(name + ": checkpoint is corrupt (contact lists)"); };
-  if (row.size() != n + 1 || row[0] != 0 || c.overlap_max.size() != key.size() ||
-      (!c.tangential_spring.empty() && c.tangential_spring.size() != key.size()))
+  if (row.size() != n + 1 || row[0] != 0 || c.history_width < 0 ||
+      c.history.size() != key.size() * static_cast<std::size_t>(c.history_width))
     bad();
   for (std::size_t k = 0; k < n; ++k) {
     if (row[k + 1] < row[k]) bad();
@@ -51,8 +51,7 @@ void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int
       if (key[q] < first || key[q] >= key_end || (q > row[k] && key[q] <= key[q - 1])) bad();
   }
   if (static_cast<std::size_t>(row[n]) != key.size()) bad();
-  for (double v : c.overlap_max) if (!std::isfinite(v) || v < 0) bad();
-  for (double v : c.tangential_spring) if (!std::isfinite(v)) bad();
+  for (double v : c.history) if (!std::isfinite(v)) bad();
 }
 
 }  // namespace
@@ -81,6 +80,7 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   w.put(world.step_count());
   w.put(world.dissipation().normal);
   w.put(world.dissipation().friction);
+  w.put(world.dissipation().rolling);
   w.put_vector(p.x); w.put_vector(p.y); w.put_vector(p.vx); w.put_vector(p.vy);
   w.put_vector(p.omega); w.put_vector(p.angle); w.put_vector(p.ax); w.put_vector(p.ay);
   w.put_vector(p.alpha); w.put_vector(p.radius); w.put_vector(p.mass);
@@ -94,14 +94,14 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   const bool pairs_built = c.row_start.size() == p.size() + 1;
   w.put_vector(pairs_built ? c.row_start : no_rows);
   w.put_vector(pairs_built ? c.j : std::vector<std::int32_t>{});
-  w.put_vector(pairs_built ? c.overlap_max : std::vector<double>{});
-  w.put_vector(pairs_built ? c.tangential_spring : std::vector<double>{});
+  w.put<std::int32_t>(c.history_width);
+  w.put_vector(pairs_built ? c.history : std::vector<double>{});
   const WallContacts& wc = world.wall_contacts();
   const bool walls_built = wc.row_start.size() == p.size() + 1;
   w.put_vector(walls_built ? wc.row_start : no_rows);
   w.put_vector(walls_built ? wc.segment : std::vector<std::int32_t>{});
-  w.put_vector(walls_built ? wc.overlap_max : std::vector<double>{});
-  w.put_vector(walls_built ? wc.tangential_spring : std::vector<double>{});
+  w.put<std::int32_t>(wc.history_width);
+  w.put_vector(walls_built ? wc.history : std::vector<double>{});
   w.put_string(run_state);
   return seal_checkpoint(w.bytes());
 }
@@ -133,8 +133,9 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   Dissipation lost;
   lost.normal = r.get<double>();
   lost.friction = r.get<double>();
+  lost.rolling = r.get<double>();
   if (!std::isfinite(time) || time < 0 || steps < 0 || !std::isfinite(lost.normal) ||
-      !std::isfinite(lost.friction))
+      !std::isfinite(lost.friction) || !std::isfinite(lost.rolling))
     throw IoError(name + ": checkpoint is corrupt (clock or energy ledger)");
   Particles p;
   p.x = r.get_vector<double>(); p.y = r.get_vector<double>();
@@ -160,16 +161,22 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   PairContacts pairs;
   pairs.row_start = r.get_vector<std::int32_t>();
   pairs.j = r.get_vector<std::int32_t>();
-  pairs.overlap_max = r.get_vector<double>();
-  pairs.tangential_spring = r.get_vector<double>();
+  pairs.history_width = r.get<std::int32_t>();
+  pairs.history = r.get_vector<double>();
   WallContacts walls;
   walls.row_start = r.get_vector<std::int32_t>();
   walls.segment = r.get_vector<std::int32_t>();
-  walls.overlap_max = r.get_vector<double>();
-  walls.tangential_spring = r.get_vector<double>();
+  walls.history_width = r.get<std::int32_t>();
+  walls.history = r.get_vector<double>();
   std::string run_state = r.get_string();
   if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
-  // Springs are absent when the world that wrote it had no friction (World::frictional).
+  // Lists written before the first step are empty; written ones carry the contact model's
+  // history, which must be this world's (the scene key covers the laws; this is the proof).
+  for (int width : {pairs.history_width, walls.history_width})
+    if (width != 0 && width != world.history_width())
+      throw IoError(name + ": checkpoint was written with other contact laws (" +
+                    std::to_string(width) + " history values per contact, this scene keeps " +
+                    std::to_string(world.history_width()) + ")");
   check_rows(pairs.row_start, pairs.j, pairs, n, static_cast<std::int64_t>(n), true, name);
   check_rows(walls.row_start, walls.segment, walls, n,
              static_cast<std::int64_t>(world.segments().size()), false, name);

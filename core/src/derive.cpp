@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "runout/contact/registry.hpp"
 #include "runout/errors.hpp"
 
 namespace runout {
@@ -64,9 +65,10 @@ double sphere_inertia(double mass, double radius) { return 0.4 * mass * radius *
 
 namespace {
 
+// The knobs of one interaction (SPEC §3); the laws derive their Params from them.
 PairCoefficients make_pair(double r_star, double m_star, double restitution, double friction,
-                           const ContactDef& contact, const DashpotDesign& linear,
-                           const DashpotDesign& hertz, double gravity) {
+                           const ContactDef& contact, const DashpotDesign& dashpot,
+                           double gravity) {
   PairCoefficients p;
   p.reduced_radius = r_star;
   p.reduced_mass = m_star;
@@ -75,26 +77,20 @@ PairCoefficients make_pair(double r_star, double m_star, double restitution, dou
   const double ratio = contact.design_impact_speed / contact.design_max_overlap * f;
   p.k_unload = m_star * gravity / r_star * ratio * ratio;
   p.k_load = restitution * restitution * p.k_unload;
-  p.walton_braun = {p.k_load, p.k_unload};
-
-  // Linear spring–dashpot: the design stiffness itself, damping for e_n with the no-tension cut.
-  p.linear_dashpot = {p.k_unload, linear.damping_constant * std::sqrt(m_star * p.k_unload)};
-
-  // Hertz: stiffness such that the design impact speed gives the design peak overlap.
-  const double v_design = contact.design_impact_speed * std::sqrt(gravity * r_star);
-  const double overlap_design = contact.design_max_overlap * r_star;
-  const double k_hertz =
-      m_star * v_design * v_design * std::pow(hertz.peak_overlap / overlap_design, 2.5);
-  p.hertz = {k_hertz, hertz.damping_constant * std::sqrt(m_star * k_hertz)};
-
-  p.tangential = {contact.stiffness_ratio * p.k_load, friction};
-  switch (contact.normal_model) {
-    case NormalModel::walton_braun: p.normal_stiffness_for_dt = p.k_unload; break;
-    case NormalModel::linear_dashpot: p.normal_stiffness_for_dt = p.k_unload; break;
-    case NormalModel::hertz:  // tangent stiffness at the design overlap
-      p.normal_stiffness_for_dt = 1.5 * k_hertz * std::sqrt(overlap_design);
-      break;
-  }
+  p.design_speed = contact.design_impact_speed * std::sqrt(gravity * r_star);
+  p.design_overlap = contact.design_max_overlap * r_star;
+  p.dashpot = dashpot;
+  p.stiffness_ratio = contact.stiffness_ratio;
+  p.k_tangential = contact.stiffness_ratio * p.k_load;
+  p.friction = friction;
+  p.rolling_friction = contact.rolling_friction;
+  p.rolling_damping = contact.rolling_damping;
+  NormalLaws::with(contact.normal_model, [&](auto law) {
+    p.normal_stiffness_for_dt = decltype(law)::stiffness_for_dt(p);
+  });
+  TangentialLaws::with(contact.tangential_model, [&](auto law) {
+    p.tangential_stiffness_for_dt = decltype(law)::stiffness_for_dt(p);
+  });
   return p;
 }
 
@@ -107,16 +103,14 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
   t.species_count = n;
   t.pair.resize(static_cast<size_t>(n * n));
   t.wall.resize(static_cast<size_t>(n));
-  // Only the chosen law's damping is designed (a bisection over simulated collisions); the
-  // other laws' coefficients stay zero and are never read.
-  auto design = [&](NormalModel law, double restitution) {
-    return contact.normal_model == law ? dashpot_design(restitution, law == NormalModel::hertz)
-                                       : DashpotDesign{};
-  };
-  const DashpotDesign linear_pp = design(NormalModel::linear_dashpot, material.restitution);
-  const DashpotDesign linear_pw = design(NormalModel::linear_dashpot, material.wall_restitution);
-  const DashpotDesign hertz_pp = design(NormalModel::hertz, material.restitution);
-  const DashpotDesign hertz_pw = design(NormalModel::hertz, material.wall_restitution);
+  // Only the chosen law's dashpot is designed (a bisection over simulated collisions), once
+  // per restitution.
+  DashpotDesign design_pp, design_pw;
+  NormalLaws::with(contact.normal_model, [&](auto law) {
+    design_pp = decltype(law)::design(material.restitution);
+    design_pw = material.wall_restitution == material.restitution
+                    ? design_pp : decltype(law)::design(material.wall_restitution);
+  });
   for (int a = 0; a < n; ++a) {
     const double ra = 0.5 * species[a].diameter;
     const double ma = sphere_mass(ra, material.density);
@@ -124,11 +118,11 @@ ContactTable derive_contact_table(const MaterialDef& material, const ContactDef&
       const double rb = 0.5 * smallest_diameter(species[b]);
       const double mb = sphere_mass(rb, material.density);
       t.pair[a * n + b] = make_pair(ra * rb / (ra + rb), ma * mb / (ma + mb),
-                                    material.restitution, material.friction, contact, linear_pp, hertz_pp,
+                                    material.restitution, material.friction, contact, design_pp,
                                     gravity);
     }
     t.wall[a] = make_pair(ra, ma, material.wall_restitution, material.wall_friction, contact,
-                          linear_pw, hertz_pw, gravity);
+                          design_pw, gravity);
   }
   return t;
 }
@@ -147,7 +141,7 @@ CollisionPeriods collision_periods(const ContactTable& table, std::span<const Sp
     const double rb = 0.5 * smallest_diameter(species[b]);
     out.ring = std::floor(kPi / std::asin(rb / (ra + rb)) + 1e-9);
   }
-  const double k_n = c.normal_stiffness_for_dt, k_s = c.tangential.k_tangential;
+  const double k_n = c.normal_stiffness_for_dt, k_s = c.tangential_stiffness_for_dt;
   // Half of the ring acts along any one direction (6 -> 3 k, SPEC §3).
   out.translational = 2 * kPi * std::sqrt(mass / (0.5 * out.ring * (k_n + k_s)));
   out.rotational = 2 * kPi * std::sqrt(inertia / (out.ring * k_s * ra * ra));

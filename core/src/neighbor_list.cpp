@@ -19,17 +19,17 @@ inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T)
           static_cast<std::int32_t>(std::int64_t(n) * (t + 1) / T)};
 }
 
-// Copies the history of pairs listed before into the new list. Both lists are sorted by
-// (first, second) within a row; rows are per first index.
+// Copies the history of pairs listed before into the new list, `width` doubles per contact.
+// Both lists are sorted by (first, second) within a row; rows are per first index. A list of
+// another width (a checkpoint of other laws) carries nothing.
 template <class Key>
 void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_second,
-                   const std::vector<double>& old_overlap_max,
-                   const std::vector<double>& old_spring, const std::vector<std::int32_t>& row,
-                   const Key& second, std::vector<double>& overlap_max,
-                   std::vector<double>& spring, std::int32_t rows, int threads) {
-  const bool had_old = old_row.size() == row.size();
-  // Springs are carried when both lists keep them (a checkpoint written without friction has none).
-  const bool springs = !spring.empty() && old_spring.size() == old_second.size();
+                   const std::vector<double>& old_history, int old_width,
+                   const std::vector<std::int32_t>& row, const Key& second,
+                   std::vector<double>& history, int width, std::int32_t rows, int threads) {
+  const bool had_old = old_row.size() == row.size() && old_width == width &&
+                       old_history.size() == old_second.size() * static_cast<size_t>(width);
+  if (width == 0) return;
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int32_t k = 0; k < rows; ++k) {
     std::int32_t a = had_old ? old_row[k] : 0;
@@ -37,8 +37,8 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
     for (std::int32_t p = row[k]; p < row[k + 1]; ++p) {
       while (a < a_end && old_second[a] < second[p]) ++a;
       const bool found = a < a_end && old_second[a] == second[p];
-      overlap_max[p] = found ? old_overlap_max[a] : 0.0;
-      if (springs) spring[p] = found ? old_spring[a] : 0.0;
+      for (int m = 0; m < width; ++m)
+        history[std::size_t(p) * width + m] = found ? old_history[std::size_t(a) * width + m] : 0.0;
     }
   }
 }
@@ -46,7 +46,7 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
 }  // namespace
 
 void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& segments,
-                             double skin, int threads, bool tangential_history,
+                             double skin, int threads, int history_width,
                              PairContacts& pairs, WallContacts& walls) {
   const auto n = static_cast<std::int32_t>(p.size());
   threads = std::max(1, threads);
@@ -212,19 +212,19 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 
   // ---- history and per-step buffers ----
   const size_t np = pairs.i.size();
-  pairs.overlap_max.resize(np);
-  pairs.tangential_spring.assign(tangential_history ? np : 0, 0.0);
-  pairs.fx.assign(np, 0); pairs.fy.assign(np, 0); pairs.ft.assign(np, 0);
-  carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.overlap_max,
-                old_pairs_.tangential_spring, pairs.row_start, pairs.j, pairs.overlap_max,
-                pairs.tangential_spring, n, threads);
+  pairs.history_width = history_width;
+  pairs.history.assign(np * history_width, 0.0);
+  pairs.fx.assign(np, 0); pairs.fy.assign(np, 0);
+  pairs.torque_i.assign(np, 0); pairs.torque_j.assign(np, 0);
+  carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.history, old_pairs_.history_width,
+                pairs.row_start, pairs.j, pairs.history, history_width, n, threads);
   const size_t nw = walls.disc.size();
-  walls.overlap_max.resize(nw);
-  walls.tangential_spring.assign(tangential_history ? nw : 0, 0.0);
-  walls.fx.assign(nw, 0); walls.fy.assign(nw, 0); walls.ft.assign(nw, 0);
-  carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.overlap_max,
-                old_walls_.tangential_spring, walls.row_start, walls.segment, walls.overlap_max,
-                walls.tangential_spring, n, threads);
+  walls.history_width = history_width;
+  walls.history.assign(nw * history_width, 0.0);
+  walls.fx.assign(nw, 0); walls.fy.assign(nw, 0); walls.torque.assign(nw, 0);
+  carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.history,
+                old_walls_.history_width, walls.row_start, walls.segment, walls.history,
+                history_width, n, threads);
 
   // ---- incoming pairs per disc (k is the pair's j), in pair order ----
   pairs.incoming_start.assign(static_cast<size_t>(n) + 1, 0);

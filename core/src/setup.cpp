@@ -208,7 +208,9 @@ StepSettings step_settings(const SceneDef& scene, const SceneSetup& setup, int t
   st.gravity = {0.0, -scene.integration.gravity};
   st.skin = scene.integration.skin * setup.unit_length;
   st.integrator = scene.integration.integrator;
-  st.normal_model = scene.contact.normal_model;
+  st.contact.normal = scene.contact.normal_model;
+  st.contact.tangential = scene.contact.tangential_model;
+  st.contact.rolling = scene.contact.rolling_model;
   st.threads = threads;
   st.unit_time = setup.unit_time;
   // Piles are renumbered spatially for cache locality across threads; explicit scenes keep the

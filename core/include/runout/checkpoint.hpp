@@ -14,7 +14,7 @@
 
 namespace runout {
 
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
                               std::string_view run_state);

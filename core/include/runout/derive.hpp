@@ -5,25 +5,12 @@
 #include <span>
 #include <vector>
 
-#include "runout/contact_law.hpp"
+#include "runout/contact/coefficients.hpp"
 #include "runout/scene.hpp"
 
 namespace runout {
 
 inline constexpr double kPi = 3.14159265358979323846;
-
-// Coefficients of one interaction (species a with species b, or species a with a wall).
-struct PairCoefficients {
-  double reduced_radius = 0;  // r* = r_a r_b / (r_a + r_b); wall: r_a
-  double reduced_mass = 0;    // m* likewise
-  double k_unload = 0;        // k_U: the design stiffness of SPEC §3
-  double k_load = 0;          // k_L = e_n^2 k_U
-  WaltonBraun::Coefficients walton_braun;
-  LinearDashpot::Coefficients linear_dashpot;
-  Hertz::Coefficients hertz;
-  CundallStrack tangential;
-  double normal_stiffness_for_dt = 0;  // k entering tau_min for the chosen normal model
-};
 
 // Every coefficient the step loop needs, indexed by species (row-major a * n + b).
 struct ContactTable {
@@ -34,8 +21,8 @@ struct ContactTable {
   // Whether any contact has a Coulomb slider: with mu = 0 everywhere the tangential force is
   // zero, so no tangential spring is kept or computed (SPEC §2 with mu = 0).
   bool frictional() const {
-    for (const auto& c : pair) if (c.tangential.friction > 0) return true;
-    for (const auto& c : wall) if (c.tangential.friction > 0) return true;
+    for (const auto& c : pair) if (c.friction > 0) return true;
+    for (const auto& c : wall) if (c.friction > 0) return true;
     return false;
   }
 };
@@ -43,15 +30,6 @@ struct ContactTable {
 // f = exp(-atan(beta)/beta), beta = pi / ln(e_n): peak overlap of a damped linear oscillator in
 // units of v / omega_0 (SPEC §3); 0.56997 for e_n = 0.2, 1 for e_n = 1.
 double peak_overlap_factor(double restitution);
-
-// Dashpot constant c_e (damping = c_e sqrt(m* k)) that gives restitution e_n with the no-tension
-// cut, and the peak overlap in units of (m* v^2 / k)^{2/5} (Hertz) or v sqrt(m*/k) (linear).
-// Solved once by bisection on x'' = -max(0, x^{3/2} + c_e x^{1/4} x') or -max(0, x + c_e x').
-struct DashpotDesign {
-  double damping_constant = 0;
-  double peak_overlap = 0;
-};
-DashpotDesign dashpot_design(double restitution, bool hertz);
 
 double sphere_mass(double radius, double density);      // 4/3 pi r^3 rho (eq. 2.12)
 double sphere_inertia(double mass, double radius);      // 2/5 m r^2 (eq. 2.13)

@@ -15,10 +15,12 @@ namespace runout {
 // Disc–disc candidate pairs, i < j, sorted by (i, j).
 struct PairContacts {
   std::vector<std::int32_t> i, j;
-  // History (SPEC §2). tangential_spring is empty when no contact has friction.
-  std::vector<double> overlap_max, tangential_spring;
+  // History (SPEC §2): history_width doubles per pair, laid out by the contact model
+  // (contact.hpp: normal | tangential | rolling), e.g. overlap_max and the tangential spring.
+  std::vector<double> history;
+  int history_width = 0;
   std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)
-  std::vector<double> ft;      // this step's tangential force on i along s; torque = r * ft
+  std::vector<double> torque_i, torque_j;  // this step's torque on each disc
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
   // Pairs whose j == k, in pair order: incoming[incoming_start[k] .. incoming_start[k+1]).
   // A disc sums its own row, then its incoming pairs: a fixed (i, j) order whatever else the
@@ -31,8 +33,9 @@ struct PairContacts {
 // Disc–wall-segment candidate pairs, sorted by (disc, segment).
 struct WallContacts {
   std::vector<std::int32_t> disc, segment;
-  std::vector<double> overlap_max, tangential_spring;  // as PairContacts
-  std::vector<double> fx, fy, ft;  // force on the disc, tangential force along s
+  std::vector<double> history;  // as PairContacts
+  int history_width = 0;
+  std::vector<double> fx, fy, torque;  // force and torque on the disc
   std::vector<std::int32_t> row_start;  // per disc
 
   std::size_t size() const { return disc.size(); }
@@ -41,10 +44,10 @@ struct WallContacts {
 class NeighborSearch {
  public:
   // Rebuilds both lists for the current positions, keeping the history of pairs present before
-  // and after. `reach` is the skin: pairs with gap < skin are listed. Without
-  // `tangential_history` (no friction anywhere) the tangential springs are left empty.
+  // and after. `reach` is the skin: pairs with gap < skin are listed. Each contact keeps
+  // `history_width` doubles of history (the contact model's).
   void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
-               int threads, bool tangential_history, PairContacts& pairs, WallContacts& walls);
+               int threads, int history_width, PairContacts& pairs, WallContacts& walls);
 
  private:
   std::vector<std::int32_t> cell_start_, cell_disc_;

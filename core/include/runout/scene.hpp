@@ -10,7 +10,6 @@
 
 namespace runout {
 
-enum class NormalModel { walton_braun, linear_dashpot, hertz };
 enum class IntegratorKind { symplectic_euler, velocity_verlet };
 
 struct MaterialDef {
@@ -23,10 +22,15 @@ struct MaterialDef {
 
 // The user's stiffness knobs; k_L, k_U, k_s are derived from them (SPEC §3).
 struct ContactDef {
-  NormalModel normal_model = NormalModel::walton_braun;
+  // The contact laws by name (contact/registry.hpp lists them).
+  std::string normal_model = "walton_braun";
+  std::string tangential_model = "cundall_strack";
+  std::string rolling_model = "none";
   double design_impact_speed = 10.0;  // alphadot0, units of sqrt(g r*)
   double design_max_overlap = 0.01;   // alphamax, fraction of r*
   double stiffness_ratio = 1.0;       // kratio = k_s / k_L
+  double rolling_friction = 0.0;      // mu_r: rolling torque limit over r* F_n (rolling laws)
+  double rolling_damping = 0.3;       // eta_r: rolling dashpot over its critical value
   // Stop when an impact overlaps beyond this share of the depth at which its contact would be
   // passed through (world.hpp): 0.75 is an overlap of 1.5 radii between equal discs.
   double overlap_guard = 0.75;

@@ -2,9 +2,11 @@
 // lists. A step is a short list of named phases (SPEC §2, eqs. 2.15–2.18):
 //   symplectic Euler:  [rebuild?] -> pair forces -> wall forces -> gather + kick + drift
 //   velocity Verlet:   half kick + drift -> [rebuild?] -> pair forces -> wall forces -> gather + half kick
-// The pair loop is written once (pair_forces.cpp) and takes the normal law as a template
-// argument. Every per-disc sum runs over a fixed list order, so results are bit-identical for
-// any thread count (docs/performance.md).
+// One contact kernel serves pairs and walls (contact_forces.cpp) and takes the contact model
+// (contact/registry.hpp) as a template argument. Every per-disc sum runs over a fixed list
+// order, so results are bit-identical for any thread count (docs/performance.md).
+// The phases live in one file each: world.cpp (the step, lists, reordering), contact_forces.cpp,
+// integrate.cpp (force sums, kick and drift), energy.cpp, safety.cpp (SPEC §8 checks).
 #pragma once
 
 #include <Eigen/Core>
@@ -12,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "runout/contact/registry.hpp"
 #include "runout/derive.hpp"
 #include "runout/neighbor_list.hpp"
 #include "runout/particles.hpp"
@@ -26,7 +29,7 @@ struct StepSettings {
   Eigen::Vector2d gravity{0, -9.81};  // m/s^2
   double skin = 0;                   // m
   IntegratorKind integrator = IntegratorKind::symplectic_euler;
-  NormalModel normal_model = NormalModel::walton_braun;
+  ContactChoice contact;  // the contact laws (frictional is set from the table)
   int threads = 1;
   double unit_time = 1;  // seconds per t*, for messages
   // Renumber discs spatially every this many steps (0: never); see World::reorder_discs.
@@ -52,23 +55,21 @@ struct StepProfile {
   std::int64_t rebuilds = 0;
 };
 
-struct ForceSum;
-struct PassResult;
-
 // What one force pass returns besides the forces: the largest guarded overlap share and, with
 // the ledger, the energy it dissipated (J).
 struct PassSums {
-  double worst = 0, loss_normal = 0, loss_friction = 0;
+  double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
 };
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
-// ended, or dashpot work) and Coulomb sliding. Kept only with StepSettings::track_energy.
+// ended, or dashpot work), Coulomb sliding, and rolling resistance. Kept only with
+// StepSettings::track_energy.
 struct Dissipation {
-  double normal = 0, friction = 0;
+  double normal = 0, friction = 0, rolling = 0;
 };
 
 // The energy ledger at one instant (SPEC §8): kinetic, potential above `reference_y`, elastic
-// (normal springs + tangential springs), and the loss committed by live Walton–Braun contacts.
+// (normal, tangential and rolling springs), and the loss committed by live Walton–Braun contacts.
 struct EnergyState {
   double translational = 0, rotational = 0, potential = 0;
   double elastic = 0, committed_normal = 0;
@@ -95,6 +96,8 @@ class World {
   double peak_impact_overlap() const { return peak_impact_overlap_; }
   // False when mu = 0 for every contact: no tangential history is kept or computed.
   bool frictional() const { return frictional_; }
+  // Doubles of history per contact the contact model keeps (contact.hpp).
+  int history_width() const { return history_width_; }
   void set_track_energy(bool on) { settings_.track_energy = on; }
   void set_dissipation(const Dissipation& d) { ledger_ = d; }
   EnergyState energy(double reference_y) const;
@@ -114,10 +117,7 @@ class World {
   void set_local_damping(double share) { settings_.local_damping = share; }
   // Puts every contact back on its loading line (forgets the largest overlaps reached): the
   // dents left by radius growth during preparation are not material history.
-  void forget_normal_history() {
-    std::fill(pairs_.overlap_max.begin(), pairs_.overlap_max.end(), 0.0);
-    std::fill(wall_contacts_.overlap_max.begin(), wall_contacts_.overlap_max.end(), 0.0);
-  }
+  void forget_normal_history();
   // Stops a wall from acting (the gate at release, SPEC §5). Its contacts end now.
   void deactivate_wall(int wall_index);
   void deactivate_wall_segment(std::size_t segment);
@@ -130,15 +130,8 @@ class World {
   void rebuild_lists();
   void reorder_discs();
   void compute_forces();
-  template <bool kFriction> void compute_forces_for();
-  template <class Law, bool kFriction> void compute_forces_with();
-  template <class Law, bool kLedger, bool kFriction> struct PassSums pair_forces();
-  template <class Law, bool kLedger, bool kFriction> struct PassSums wall_forces();
-  ForceSum force_sum() const;
-  void finish_pass(const PassResult* results);
-  void integrate_symplectic_euler();
-  void verlet_half_kick_and_drift();
-  void verlet_half_kick();
+  // Kick v += a kick (a from the contact sums first when `gather`), then drift x += v drift.
+  void advance(bool gather, double kick, double drift);
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -152,6 +145,7 @@ class World {
   ContactTable table_;
   StepSettings settings_;
   bool frictional_;  // some contact has mu > 0: tangential springs are kept (SPEC §2)
+  int history_width_ = 0, normal_history_width_ = 0;  // doubles per contact (contact.hpp)
   NeighborSearch search_;
   PairContacts pairs_;
   WallContacts wall_contacts_;

@@ -10,6 +10,7 @@
 #include <utility>
 #include <sstream>
 
+#include "runout/contact/registry.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
 #include "runout/size_distribution.hpp"
@@ -170,10 +171,13 @@ class TableReader {
   std::string hint_;
 };
 
-const std::vector<std::pair<std::string, NormalModel>> kNormalModels = {
-    {"walton_braun", NormalModel::walton_braun},
-    {"linear_dashpot", NormalModel::linear_dashpot},
-    {"hertz", NormalModel::hertz}};
+// The contact laws' names come from their registry (contact/registry.hpp).
+template <class Laws>
+std::vector<std::pair<std::string, std::string>> law_choices() {
+  std::vector<std::pair<std::string, std::string>> v;
+  for (const auto& name : Laws::names()) v.emplace_back(name, name);
+  return v;
+}
 const std::vector<std::pair<std::string, WallInside>> kWallSides = {
     {"left", WallInside::left}, {"right", WallInside::right}, {"both", WallInside::both}};
 const std::vector<std::pair<std::string, SizeDistribution>> kDistributions = {
@@ -277,8 +281,14 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   }
   if (auto t = top.subtable("contact")) {
     TableReader r(*t, "contact", source);
-    r.allow({"normal_model", "design_impact_speed", "design_max_overlap", "stiffness_ratio", "overlap_guard"}, "");
-    r.choice("normal_model", s.contact.normal_model, kNormalModels);
+    r.allow({"normal_model", "tangential_model", "rolling_model", "design_impact_speed",
+             "design_max_overlap", "stiffness_ratio", "rolling_friction", "rolling_damping",
+             "overlap_guard"}, "");
+    r.choice("normal_model", s.contact.normal_model, law_choices<NormalLaws>());
+    r.choice("tangential_model", s.contact.tangential_model, law_choices<TangentialLaws>());
+    r.choice("rolling_model", s.contact.rolling_model, law_choices<RollingLaws>());
+    r.number("rolling_friction", s.contact.rolling_friction, closed(0, 10));
+    r.number("rolling_damping", s.contact.rolling_damping, closed(0, 10));
     r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
     r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
     r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
@@ -496,11 +506,6 @@ SceneDef read_scene_file(const std::string& path, const std::vector<Override>& o
   return read_scene(text, path, overrides);
 }
 
-const char* to_string(NormalModel m) {
-  for (const auto& [name, value] : kNormalModels)
-    if (value == m) return name.c_str();
-  return "?";
-}
 const char* to_string(IntegratorKind k) {
   for (const auto& [name, value] : kIntegrators)
     if (value == k) return name.c_str();
@@ -522,7 +527,11 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                       {"wall_friction", s.material.wall_friction},
                                       {"restitution", s.material.restitution},
                                       {"wall_restitution", s.material.wall_restitution}});
-  root.insert("contact", toml::table{{"normal_model", to_string(s.contact.normal_model)},
+  root.insert("contact", toml::table{{"normal_model", s.contact.normal_model},
+                                     {"tangential_model", s.contact.tangential_model},
+                                     {"rolling_model", s.contact.rolling_model},
+                                     {"rolling_friction", s.contact.rolling_friction},
+                                     {"rolling_damping", s.contact.rolling_damping},
                                      {"design_impact_speed", s.contact.design_impact_speed},
                                      {"design_max_overlap", s.contact.design_max_overlap},
                                      {"stiffness_ratio", s.contact.stiffness_ratio},

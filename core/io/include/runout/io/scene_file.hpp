@@ -40,7 +40,6 @@ const std::string& embedded_quick_scene();
 // The bench scene: the thesis pile D/d = 4, %A_p = 40 (examples/thesis_4_40.toml).
 const std::string& embedded_bench_scene();
 
-const char* to_string(NormalModel m);
 const char* to_string(IntegratorKind k);
 const char* to_string(SizeDistribution d);
 

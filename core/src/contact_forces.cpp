@@ -1,0 +1,285 @@
+// The contact kernel (SPEC §2): one loop body for disc–disc pairs and disc–wall contacts,
+// templated on the contact model (contact/registry.hpp). A source turns contact q into its
+// kinematics; the model turns those and the history into forces and torques; the kernel stores
+// them and books the ledger. A wall plays j with zero velocity, spin and radius.
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "step_phases.hpp"
+
+namespace runout::phases {
+
+namespace {
+
+// One contact as its source sees it.
+struct Contact {
+  ContactKinematics kinematics;
+  double nx = 0, ny = 0;    // unit normal from the disc towards its partner
+  bool touching = false;
+  std::int32_t kind = 0;    // row of the parameter table
+  double guard_depth = 1;   // depth at which the contact would be passed through (world.hpp)
+};
+
+// Disc–disc pairs. Flat and branch-free so the compiler vectorises the loop: a pair that does
+// not touch computes a force and then discards it, and its history is forgotten.
+struct PairSource {
+  static constexpr bool kPairs = true;
+  const double* __restrict x; const double* __restrict y;
+  const double* __restrict vx; const double* __restrict vy; const double* __restrict om;
+  const double* __restrict r; const std::int32_t* __restrict species;
+  const std::int32_t* __restrict pi; const std::int32_t* __restrict pj;
+  int species_count;
+  double dt;
+
+  Contact operator()(std::int64_t q) const {
+    const std::int32_t i = pi[q], j = pj[q];
+    const double dx = x[j] - x[i], dy = y[j] - y[i];
+    const double dist2 = dx * dx + dy * dy;
+    const double rsum = r[i] + r[j];
+    const double dist = std::sqrt(dist2);
+    // Coincident centres have no normal; dx = dy = 0 gives the zero vector and a finite
+    // force (eq. 2.2), without a branch.
+    const double inv_dist = 1.0 / std::max(dist, 1e-300);
+    Contact c;
+    c.nx = dx * inv_dist;
+    c.ny = dy * inv_dist;
+    c.touching = dist2 < rsum * rsum;
+    const double dvx = vx[j] - vx[i], dvy = vy[j] - vy[i];
+    ContactKinematics& k = c.kinematics;
+    k.overlap = rsum - dist;  // eq. 2.1
+    k.overlap_rate = -(dvx * c.nx + dvy * c.ny);
+    k.slip = -dvx * c.ny + dvy * c.nx - (om[j] * r[j] + om[i] * r[i]);  // eq. 2.7
+    k.spin_difference = om[i] - om[j];
+    k.radius_i = r[i];
+    k.radius_j = r[j];
+    k.dt = dt;
+    c.kind = species[i] * species_count + species[j];
+    c.guard_depth = rsum;
+    return c;
+  }
+};
+
+// Disc–wall contacts: few, so a plain loop (wall_touch branches on the segment's kind).
+struct WallSource {
+  static constexpr bool kPairs = false;
+  const Particles& p;
+  const std::vector<Segment>& segments;
+  const std::int32_t* disc; const std::int32_t* segment;
+  double dt;
+
+  Contact operator()(std::int64_t q) const {
+    const std::int32_t i = disc[q];
+    const Segment& s = segments[segment[q]];
+    const double r = p.radius[i];
+    const WallTouch touch = wall_touch(s, {p.x[i], p.y[i]}, r);
+    Contact c;
+    c.nx = touch.normal.x();
+    c.ny = touch.normal.y();
+    c.touching = s.active && touch.acts && touch.gap < r;
+    ContactKinematics& k = c.kinematics;
+    k.overlap = r - touch.gap;
+    k.overlap_rate = p.vx[i] * c.nx + p.vy[i] * c.ny;
+    k.slip = p.vx[i] * c.ny - p.vy[i] * c.nx - p.omega[i] * r;
+    k.spin_difference = p.omega[i];
+    k.radius_i = r;
+    k.radius_j = 0;
+    k.dt = dt;
+    c.kind = p.species[i];
+    c.guard_depth = pass_through_overlap(s, r);
+    return c;
+  }
+};
+
+// What one contact adds to the pass's sums.
+struct ContactSums {
+  double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
+};
+
+template <class Model, bool kLedger, class Source>
+struct Kernel {
+  Source source;
+  const typename Model::Params* __restrict params;
+  double impact_rate;
+  double* __restrict history;
+  double* __restrict fx; double* __restrict fy;
+  double* __restrict torque_i; double* __restrict torque_j;  // torque_j: pairs only
+
+  ContactSums one(std::int64_t q) const {
+    constexpr int W = Model::kHistory;
+    const Contact c = source(q);
+    const auto& law = params[c.kind];
+    double h[W > 0 ? W : 1];
+    for (int m = 0; m < W; ++m) h[m] = history[q * W + m];
+    ContactSums sums;
+    // A contact that ends banks the loss its history committed (Walton–Braun hysteresis).
+    if constexpr (kLedger) sums.loss_normal = Model::committed_loss(law, h);
+    ContactLoss loss;
+    const ContactAction a = Model::evaluate(law, c.kinematics, h, loss);
+    if constexpr (kLedger) {
+      sums.loss_normal = c.touching ? loss.normal : sums.loss_normal;
+      sums.loss_friction = c.touching ? loss.friction : 0.0;
+      sums.loss_rolling = c.touching ? loss.rolling : 0.0;
+    }
+    for (int m = 0; m < W; ++m) history[q * W + m] = c.touching ? h[m] : 0.0;
+    const double fn = c.touching ? a.normal : 0.0, ft = c.touching ? a.tangential : 0.0;
+    // Force on i: the normal pushes i away from j, the tangential acts along s = (-ny, nx).
+    fx[q] = -fn * c.nx - ft * c.ny;
+    fy[q] = -fn * c.ny + ft * c.nx;
+    // Without friction or rolling the torques stay the zeros the list rebuild wrote.
+    if constexpr (Model::kFriction || Model::kRolling) {
+      torque_i[q] = c.touching ? a.torque_i : 0.0;
+      if constexpr (Source::kPairs) torque_j[q] = c.touching ? a.torque_j : 0.0;
+    }
+    // The guard watches impacts (loading faster than impact_rate), not the permanent set of
+    // a static hysteretic contact.
+    sums.worst = c.touching && c.kinematics.overlap_rate > impact_rate
+                     ? c.kinematics.overlap / c.guard_depth : 0.0;
+    return sums;
+  }
+
+  PassSums operator()(std::int64_t begin, std::int64_t end) const {
+    double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
+    if constexpr (Source::kPairs) {
+#pragma omp simd reduction(max : worst) reduction(+ : loss_normal, loss_friction, loss_rolling)
+      for (std::int64_t q = begin; q < end; ++q) {
+        const ContactSums s = one(q);
+        worst = std::max(worst, s.worst);
+        loss_normal += s.loss_normal; loss_friction += s.loss_friction; loss_rolling += s.loss_rolling;
+      }
+    } else {
+      for (std::int64_t q = begin; q < end; ++q) {
+        const ContactSums s = one(q);
+        worst = std::max(worst, s.worst);
+        loss_normal += s.loss_normal; loss_friction += s.loss_friction; loss_rolling += s.loss_rolling;
+      }
+    }
+    return {worst, loss_normal, loss_friction, loss_rolling};
+  }
+};
+
+// Runs a kernel over [0, n). Forces are per contact, so any split gives the same bits; the
+// ledger's sums are taken over fixed blocks of contacts added in order, so they are the same
+// bits for every thread count too (a resumed run may use another, SPEC §8).
+template <class K>
+PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
+             std::vector<PassSums>& blocks) {
+  PassSums total;
+  if (!ledger) {
+    if (threads == 1 || n < 64) return kernel(0, n);
+    PassSums part[kMaxThreads] = {};
+#pragma omp parallel num_threads(threads)
+    {
+      const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
+      part[t] = kernel(n * t / T, n * (t + 1) / T);
+    }
+    for (int t = 0; t < threads; ++t) total.worst = std::max(total.worst, part[t].worst);
+    return total;
+  }
+  constexpr std::int64_t kBlock = 256;  // small enough to balance two threads on a few thousand pairs
+  const std::int64_t count = (n + kBlock - 1) / kBlock;
+  blocks.resize(static_cast<std::size_t>(count));
+#pragma omp parallel for num_threads(threads) if (threads > 1 && count > 1) schedule(static)
+  for (std::int64_t b = 0; b < count; ++b)
+    blocks[b] = kernel(b * kBlock, std::min(n, (b + 1) * kBlock));
+  for (const PassSums& part : blocks) {
+    total.worst = std::max(total.worst, part.worst);
+    total.loss_normal += part.loss_normal;
+    total.loss_friction += part.loss_friction;
+    total.loss_rolling += part.loss_rolling;
+  }
+  return total;
+}
+
+template <class Model>
+std::vector<typename Model::Params> law_table(const std::vector<PairCoefficients>& rows) {
+  std::vector<typename Model::Params> out;
+  out.reserve(rows.size());
+  for (const auto& c : rows) out.push_back(Model::params(c));
+  return out;
+}
+
+PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
+  return {p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(), p.radius.data(),
+          p.species.data(), c.i.data(), c.j.data(), step.table.species_count, step.settings.dt};
+}
+WallSource wall_source(const StepContext& step, const Particles& p, const WallContacts& c) {
+  return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
+}
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+template <class Model, bool kLedger>
+PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
+                     WallContacts& walls, std::vector<PassSums>& blocks, StepProfile& profile) {
+  const StepSettings& st = step.settings;
+  auto t0 = Clock::now();
+  const auto pair_law = law_table<Model>(step.table.pair);
+  const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), pair_law.data(),
+                                              st.impact_rate, pairs.history.data(),
+                                              pairs.fx.data(), pairs.fy.data(),
+                                              pairs.torque_i.data(), pairs.torque_j.data()};
+  PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks);
+  profile.pair_forces += seconds_since(t0);
+  t0 = Clock::now();
+  const auto wall_law = law_table<Model>(step.table.wall);
+  const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), wall_law.data(),
+                                              st.impact_rate, walls.history.data(),
+                                              walls.fx.data(), walls.fy.data(),
+                                              walls.torque.data(), nullptr};
+  const PassSums w = run(wk, static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks);
+  profile.wall_forces += seconds_since(t0);
+  sums.worst = std::max(sums.worst, w.worst);
+  sums.loss_normal += w.loss_normal;
+  sums.loss_friction += w.loss_friction;
+  sums.loss_rolling += w.loss_rolling;
+  return sums;
+}
+
+template <class Model, class Source, class Out>
+void energy_of(const Source& source, const std::vector<typename Model::Params>& law,
+               const std::vector<double>& history, std::int64_t n, Out& e) {
+  constexpr int W = Model::kHistory;
+  for (std::int64_t q = 0; q < n; ++q) {
+    const Contact c = source(q);
+    if (!c.touching) continue;
+    const double* h = history.data() + q * W;
+    e.elastic += Model::elastic_energy(law[c.kind], c.kinematics, h);
+    e.committed_normal += Model::committed_loss(law[c.kind], h);
+  }
+}
+
+}  // namespace
+
+PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
+                        WallContacts& walls, std::vector<PassSums>& ledger_blocks,
+                        StepProfile& profile) {
+  PassSums sums;
+  dispatch(step.settings.contact, [&](auto model) {
+    using Model = decltype(model);
+    sums = step.settings.track_energy
+               ? forces_with<Model, true>(step, p, pairs, walls, ledger_blocks, profile)
+               : forces_with<Model, false>(step, p, pairs, walls, ledger_blocks, profile);
+  });
+  return sums;
+}
+
+ContactEnergy contact_energy(const StepContext& step, const Particles& p,
+                             const PairContacts& pairs, const WallContacts& walls) {
+  ContactEnergy e;
+  dispatch(step.settings.contact, [&](auto model) {
+    using Model = decltype(model);
+    energy_of<Model>(pair_source(step, p, pairs), law_table<Model>(step.table.pair),
+                     pairs.history, static_cast<std::int64_t>(pairs.size()), e);
+    energy_of<Model>(wall_source(step, p, walls), law_table<Model>(step.table.wall),
+                     walls.history, static_cast<std::int64_t>(walls.size()), e);
+  });
+  return e;
+}
+
+}  // namespace runout::phases
