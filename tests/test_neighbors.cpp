@@ -84,7 +84,7 @@ std::vector<double> held_disc(double skin, bool with_flyer, std::int64_t& rebuil
     w.step();
     xs.push_back(w.particles().x[0]);
     for (std::size_t q = 0; q < w.wall_contacts().size(); ++q)
-      if (w.wall_contacts().disc[q] == 0) { sum += std::abs(w.wall_contacts().history[q * 2 + 1]) * k_s; ++n; }  // overlap_max, spring
+      if (w.wall_contacts().disc[q] == 0) { sum += std::abs(w.wall_contacts().history[w.wall_contacts().size() + q]) * k_s; ++n; }  // columns: overlap_max, spring
   }
   rebuilds = w.profile().rebuilds;
   mean_spring_force = n ? sum / n : 0.0;

@@ -34,7 +34,7 @@ struct PairSource {
   int species_count;
   double dt;
 
-  Contact operator()(std::int64_t q) const {
+  [[gnu::always_inline]] Contact operator()(std::int64_t q) const {
     const std::int32_t i = pi[q], j = pj[q];
     const double dx = x[j] - x[i], dy = y[j] - y[i];
     const double dist2 = dx * dx + dy * dy;
@@ -70,7 +70,7 @@ struct WallSource {
   const std::int32_t* disc; const std::int32_t* segment;
   double dt;
 
-  Contact operator()(std::int64_t q) const {
+  [[gnu::always_inline]] Contact operator()(std::int64_t q) const {
     const std::int32_t i = disc[q];
     const Segment& s = segments[segment[q]];
     const double r = p.radius[i];
@@ -101,29 +101,29 @@ struct ContactSums {
 template <class Model, bool kLedger, class Source>
 struct Kernel {
   Source source;
-  const typename Model::Params* __restrict params;
+  typename Model::Row law;
   double impact_rate;
-  double* __restrict history;
+  double* __restrict history;  // column m of contact q at history[m * count + q] (SoA)
+  std::int64_t count;
   double* __restrict fx; double* __restrict fy;
   double* __restrict torque_i; double* __restrict torque_j;  // torque_j: pairs only
 
-  ContactSums one(std::int64_t q) const {
+  [[gnu::always_inline]] ContactSums one(std::int64_t q) const {
     constexpr int W = Model::kHistory;
     const Contact c = source(q);
-    const auto& law = params[c.kind];
     double h[W > 0 ? W : 1];
-    for (int m = 0; m < W; ++m) h[m] = history[q * W + m];
+    for (int m = 0; m < W; ++m) h[m] = history[m * count + q];
     ContactSums sums;
     // A contact that ends banks the loss its history committed (Walton–Braun hysteresis).
-    if constexpr (kLedger) sums.loss_normal = Model::committed_loss(law, h);
+    if constexpr (kLedger) sums.loss_normal = Model::committed_loss(law, c.kind, h);
     ContactLoss loss;
-    const ContactAction a = Model::evaluate(law, c.kinematics, h, loss);
+    const ContactAction a = Model::evaluate(law, c.kind, c.kinematics, h, loss);
     if constexpr (kLedger) {
       sums.loss_normal = c.touching ? loss.normal : sums.loss_normal;
       sums.loss_friction = c.touching ? loss.friction : 0.0;
       sums.loss_rolling = c.touching ? loss.rolling : 0.0;
     }
-    for (int m = 0; m < W; ++m) history[q * W + m] = c.touching ? h[m] : 0.0;
+    for (int m = 0; m < W; ++m) history[m * count + q] = c.touching ? h[m] : 0.0;
     const double fn = c.touching ? a.normal : 0.0, ft = c.touching ? a.tangential : 0.0;
     // Force on i: the normal pushes i away from j, the tangential acts along s = (-ny, nx).
     fx[q] = -fn * c.nx - ft * c.ny;
@@ -135,17 +135,20 @@ struct Kernel {
     }
     // The guard watches impacts (loading faster than impact_rate), not the permanent set of
     // a static hysteretic contact.
-    sums.worst = c.touching && c.kinematics.overlap_rate > impact_rate
-                     ? c.kinematics.overlap / c.guard_depth : 0.0;
+    // (Bitwise &: both sides are evaluated, so no load becomes conditional on the other.)
+    const bool guarded = c.touching & (c.kinematics.overlap_rate > impact_rate);
+    sums.worst = guarded ? c.kinematics.overlap / c.guard_depth : 0.0;
     return sums;
   }
 
   PassSums operator()(std::int64_t begin, std::int64_t end) const {
+    // A local copy, so the compiler knows the stores below cannot move these pointers.
+    const Kernel k = *this;
     double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
     if constexpr (Source::kPairs) {
 #pragma omp simd reduction(max : worst) reduction(+ : loss_normal, loss_friction, loss_rolling)
       for (std::int64_t q = begin; q < end; ++q) {
-        const ContactSums s = one(q);
+        const ContactSums s = k.one(q);
         worst = std::max(worst, s.worst);
         loss_normal += s.loss_normal; loss_friction += s.loss_friction; loss_rolling += s.loss_rolling;
       }
@@ -193,14 +196,6 @@ PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
   return total;
 }
 
-template <class Model>
-std::vector<typename Model::Params> law_table(const std::vector<PairCoefficients>& rows) {
-  std::vector<typename Model::Params> out;
-  out.reserve(rows.size());
-  for (const auto& c : rows) out.push_back(Model::params(c));
-  return out;
-}
-
 PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
   return {p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(), p.radius.data(),
           p.species.data(), c.i.data(), c.j.data(), step.table.species_count, step.settings.dt};
@@ -219,17 +214,19 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                      WallContacts& walls, std::vector<PassSums>& blocks, StepProfile& profile) {
   const StepSettings& st = step.settings;
   auto t0 = Clock::now();
-  const auto pair_law = law_table<Model>(step.table.pair);
-  const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), pair_law.data(),
+  const auto pair_law = Model::tables(step.table.pair);
+  const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law),
                                               st.impact_rate, pairs.history.data(),
+                                              static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque_i.data(), pairs.torque_j.data()};
   PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks);
   profile.pair_forces += seconds_since(t0);
   t0 = Clock::now();
-  const auto wall_law = law_table<Model>(step.table.wall);
-  const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), wall_law.data(),
+  const auto wall_law = Model::tables(step.table.wall);
+  const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, walls.history.data(),
+                                              static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
                                               walls.torque.data(), nullptr};
   const PassSums w = run(wk, static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks);
@@ -242,15 +239,17 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
 }
 
 template <class Model, class Source, class Out>
-void energy_of(const Source& source, const std::vector<typename Model::Params>& law,
+void energy_of(const Source& source, const typename Model::Tables& tables,
                const std::vector<double>& history, std::int64_t n, Out& e) {
   constexpr int W = Model::kHistory;
+  const auto law = Model::row(tables);
   for (std::int64_t q = 0; q < n; ++q) {
     const Contact c = source(q);
     if (!c.touching) continue;
-    const double* h = history.data() + q * W;
-    e.elastic += Model::elastic_energy(law[c.kind], c.kinematics, h);
-    e.committed_normal += Model::committed_loss(law[c.kind], h);
+    double h[W > 0 ? W : 1];
+    for (int m = 0; m < W; ++m) h[m] = history[m * n + q];
+    e.elastic += Model::elastic_energy(law, c.kind, c.kinematics, h);
+    e.committed_normal += Model::committed_loss(law, c.kind, h);
   }
 }
 
@@ -274,9 +273,9 @@ ContactEnergy contact_energy(const StepContext& step, const Particles& p,
   ContactEnergy e;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
-    energy_of<Model>(pair_source(step, p, pairs), law_table<Model>(step.table.pair),
+    energy_of<Model>(pair_source(step, p, pairs), Model::tables(step.table.pair),
                      pairs.history, static_cast<std::int64_t>(pairs.size()), e);
-    energy_of<Model>(wall_source(step, p, walls), law_table<Model>(step.table.wall),
+    energy_of<Model>(wall_source(step, p, walls), Model::tables(step.table.wall),
                      walls.history, static_cast<std::int64_t>(walls.size()), e);
   });
   return e;

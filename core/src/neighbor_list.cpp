@@ -19,7 +19,7 @@ inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T)
           static_cast<std::int32_t>(std::int64_t(n) * (t + 1) / T)};
 }
 
-// Copies the history of pairs listed before into the new list, `width` doubles per contact.
+// Copies the history of pairs listed before into the new list, `width` columns per contact.
 // Both lists are sorted by (first, second) within a row; rows are per first index. A list of
 // another width (a checkpoint of other laws) carries nothing.
 template <class Key>
@@ -30,6 +30,8 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
   const bool had_old = old_row.size() == row.size() && old_width == width &&
                        old_history.size() == old_second.size() * static_cast<size_t>(width);
   if (width == 0) return;
+  // Column m of contact q at history[m * count + q] (SoA, so the kernel loads are contiguous).
+  const std::size_t old_count = old_second.size(), new_count = second.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (std::int32_t k = 0; k < rows; ++k) {
     std::int32_t a = had_old ? old_row[k] : 0;
@@ -38,7 +40,7 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
       while (a < a_end && old_second[a] < second[p]) ++a;
       const bool found = a < a_end && old_second[a] == second[p];
       for (int m = 0; m < width; ++m)
-        history[std::size_t(p) * width + m] = found ? old_history[std::size_t(a) * width + m] : 0.0;
+        history[m * new_count + p] = found ? old_history[m * old_count + a] : 0.0;
     }
   }
 }

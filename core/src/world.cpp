@@ -33,12 +33,12 @@ World::World(Particles particles, std::vector<Segment> segments, ContactTable ta
 }
 
 void World::forget_normal_history() {
-  auto forget = [&](std::vector<double>& history, int width) {
-    for (std::size_t q = 0; width > 0 && q * width < history.size(); ++q)
-      for (int m = 0; m < normal_history_width_; ++m) history[q * width + m] = 0.0;
+  // The normal law's columns come first (contact.hpp).
+  auto forget = [&](std::vector<double>& history, std::size_t count) {
+    std::fill_n(history.begin(), std::min(history.size(), normal_history_width_ * count), 0.0);
   };
-  forget(pairs_.history, pairs_.history_width);
-  forget(wall_contacts_.history, wall_contacts_.history_width);
+  forget(pairs_.history, pairs_.size());
+  forget(wall_contacts_.history, wall_contacts_.size());
 }
 
 void World::deactivate_wall(int wall_index) {
@@ -101,8 +101,8 @@ void World::reorder_discs() {
   // History keyed by the new numbering, rows sorted, ready for the search to carry over.
   // Contacts with all-zero history (not touching) need not be carried.
   const int W = history_width_;
-  auto carried = [W](const std::vector<double>& h, std::size_t q) {
-    for (int m = 0; m < W; ++m) if (h[q * W + m] != 0.0) return true;
+  auto carried = [W](const std::vector<double>& h, std::size_t count, std::size_t q) {
+    for (int m = 0; m < W; ++m) if (h[m * count + q] != 0.0) return true;
     return false;
   };
   auto rows_of = [&](std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>>& keys,
@@ -110,16 +110,19 @@ void World::reorder_discs() {
                      std::vector<std::int32_t>& second, std::vector<double>& out) {
     std::sort(keys.begin(), keys.end());
     row_start.assign(n + 1, 0);
-    for (const auto& [key, q] : keys) {
+    const std::size_t count = W > 0 ? history.size() / W : 0, kept = keys.size();
+    out.assign(kept * W, 0.0);
+    for (std::size_t e = 0; e < kept; ++e) {
+      const auto& [key, q] = keys[e];
       ++row_start[key.first + 1];
       second.push_back(key.second);
-      out.insert(out.end(), history.begin() + q * W, history.begin() + (q + 1) * W);
+      for (int m = 0; m < W; ++m) out[m * kept + e] = history[m * count + q];
     }
     for (std::size_t k = 0; k < n; ++k) row_start[k + 1] += row_start[k];
   };
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>> keys;
   for (std::size_t q = 0; q < pairs_.size(); ++q) {
-    if (!carried(pairs_.history, q)) continue;
+    if (!carried(pairs_.history, pairs_.size(), q)) continue;
     std::int32_t a = new_index[pairs_.i[q]], b = new_index[pairs_.j[q]];
     if (a > b) std::swap(a, b);
     keys.push_back({{a, b}, q});

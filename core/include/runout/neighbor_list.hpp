@@ -15,8 +15,9 @@ namespace runout {
 // Disc–disc candidate pairs, i < j, sorted by (i, j).
 struct PairContacts {
   std::vector<std::int32_t> i, j;
-  // History (SPEC §2): history_width doubles per pair, laid out by the contact model
-  // (contact.hpp: normal | tangential | rolling), e.g. overlap_max and the tangential spring.
+  // History (SPEC §2): history_width columns, contact q's value m at history[m * size() + q],
+  // laid out by the contact model (contact.hpp: normal | tangential | rolling), e.g.
+  // overlap_max and the tangential spring.
   std::vector<double> history;
   int history_width = 0;
   std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)

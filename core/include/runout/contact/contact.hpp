@@ -15,7 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <type_traits>
+#include <vector>
 
 #include "runout/contact/coefficients.hpp"
 
@@ -65,7 +67,7 @@ struct NoRolling {
   static double elastic_energy(const Params&, const ContactKinematics&, const double*) { return 0; }
 };
 
-// One contact's laws together. History is laid out normal | tangential | rolling.
+// One contact's laws together. History columns are laid out normal | tangential | rolling.
 template <class Normal, class Tangential, class Rolling>
 struct ContactModel {
   using NormalLaw = Normal;
@@ -75,28 +77,43 @@ struct ContactModel {
   static constexpr bool kFriction = !std::is_same_v<Tangential, Frictionless>;
   static constexpr bool kRolling = !std::is_same_v<Rolling, NoRolling>;
 
-  struct Params {
-    typename Normal::Params normal;
-    typename Tangential::Params tangential;
-    typename Rolling::Params rolling;
+  // Each law's Params in its own table (one row per species pair or wall): gathering a
+  // field from a small struct by the pair's kind is what the vectoriser does well.
+  struct Tables {
+    std::vector<typename Normal::Params> normal;
+    std::vector<typename Tangential::Params> tangential;
+    std::vector<typename Rolling::Params> rolling;
   };
-  static Params params(const PairCoefficients& c) {
-    return {Normal::params(c), Tangential::params(c), Rolling::params(c)};
+  static Tables tables(const std::vector<PairCoefficients>& rows) {
+    Tables t;
+    for (const auto& c : rows) {
+      t.normal.push_back(Normal::params(c));
+      t.tangential.push_back(Tangential::params(c));
+      t.rolling.push_back(Rolling::params(c));
+    }
+    return t;
   }
+  // Raw pointers into Tables, indexed by the contact's kind.
+  struct Row {
+    const typename Normal::Params* __restrict normal;
+    const typename Tangential::Params* __restrict tangential;
+    const typename Rolling::Params* __restrict rolling;
+  };
+  static Row row(const Tables& t) { return {t.normal.data(), t.tangential.data(), t.rolling.data()}; }
 
   // `history` holds this contact's state before the step and is updated in place; `loss`
   // gets what the laws dissipated (for a contact that touches; the kernel books ending ones).
-  static ContactAction evaluate(const Params& p, const ContactKinematics& k, double* history,
-                                ContactLoss& loss) {
+  static ContactAction evaluate(const Row& p, std::int32_t kind, const ContactKinematics& k,
+                                double* history, ContactLoss& loss) {
     ContactAction a;
-    a.normal = Normal::force(p.normal, k, history, loss.normal);
-    a.tangential = Tangential::force(p.tangential, k, a.normal, history + Normal::kHistory,
-                                     loss.friction);
+    a.normal = Normal::force(p.normal[kind], k, history, loss.normal);
+    a.tangential = Tangential::force(p.tangential[kind], k, a.normal,
+                                     history + Normal::kHistory, loss.friction);
     // The tangential force at the surface of each body: torque r F_t, same sign on both.
     a.torque_i = k.radius_i * a.tangential;
     a.torque_j = k.radius_j * a.tangential;
     if constexpr (kRolling) {
-      const double m = Rolling::torque(p.rolling, k, a.normal,
+      const double m = Rolling::torque(p.rolling[kind], k, a.normal,
                                        history + Normal::kHistory + Tangential::kHistory,
                                        loss.rolling);
       a.torque_i += m;
@@ -105,14 +122,16 @@ struct ContactModel {
     return a;
   }
   // Spring energy held by a touching contact now (SPEC §8).
-  static double elastic_energy(const Params& p, const ContactKinematics& k, const double* history) {
-    return Normal::elastic_energy(p.normal, k.overlap, history) +
-           Tangential::elastic_energy(p.tangential, k, history + Normal::kHistory) +
-           Rolling::elastic_energy(p.rolling, k, history + Normal::kHistory + Tangential::kHistory);
+  static double elastic_energy(const Row& p, std::int32_t kind, const ContactKinematics& k,
+                               const double* history) {
+    return Normal::elastic_energy(p.normal[kind], k.overlap, history) +
+           Tangential::elastic_energy(p.tangential[kind], k, history + Normal::kHistory) +
+           Rolling::elastic_energy(p.rolling[kind], k,
+                                   history + Normal::kHistory + Tangential::kHistory);
   }
   // Loss already committed by the history (Walton–Braun's hysteresis), booked when it ends.
-  static double committed_loss(const Params& p, const double* history) {
-    return Normal::committed_loss(p.normal, history);
+  static double committed_loss(const Row& p, std::int32_t kind, const double* history) {
+    return Normal::committed_loss(p.normal[kind], history);
   }
 };
 
