@@ -289,6 +289,14 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.choice("rolling_model", s.contact.rolling_model, law_choices<RollingLaws>());
     r.number("rolling_friction", s.contact.rolling_friction, closed(0, 10));
     r.number("rolling_damping", s.contact.rolling_damping, closed(0, 10));
+    // A law may be defined only with one normal law (its registry row says which).
+    TangentialLaws::with(s.contact.tangential_model, [&](auto law) {
+      using Law = decltype(law);
+      if constexpr (requires { Law::kNormalLaw; })
+        if (s.contact.normal_model != Law::kNormalLaw)
+          r.fail("tangential_model", "\"" + s.contact.tangential_model + "\" needs contact.normal_model = \"" +
+                                         Law::kNormalLaw + "\" (it is \"" + s.contact.normal_model + "\")");
+    });
     r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
     r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
     r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
