@@ -14,6 +14,7 @@
 #include "runout/contact/cundall_strack.hpp"
 #include "runout/contact/hertz.hpp"
 #include "runout/contact/linear_dashpot.hpp"
+#include "runout/contact/mindlin.hpp"
 #include "runout/contact/walton_braun.hpp"
 
 namespace runout {
@@ -32,7 +33,7 @@ struct LawList {
 };
 
 using NormalLaws = LawList<WaltonBraun, LinearDashpot, Hertz>;
-using TangentialLaws = LawList<CundallStrack>;
+using TangentialLaws = LawList<CundallStrack, Mindlin>;
 using RollingLaws = LawList<NoRolling>;
 
 // The laws a scene chose (names checked by the scene reader against the lists above).
