@@ -183,8 +183,10 @@ std::string lammps_dump_frame(const World& world, double t_star) {
   std::string out;
   out.reserve(p.size() * 96 + 256);
   char line[256];
-  std::snprintf(line, sizeof line, "ITEM: TIMESTEP\n%lld\nITEM: TIME\n%.9g\n",
-                static_cast<long long>(world.step_count()), t_star);
+  // TIME before TIMESTEP, as LAMMPS's own `dump_modify time yes` writes it: its read_dump
+  // refuses the other order ("Dump file is incorrectly formatted"); OVITO and ASE read either.
+  std::snprintf(line, sizeof line, "ITEM: TIME\n%.9g\nITEM: TIMESTEP\n%lld\n", t_star,
+                static_cast<long long>(world.step_count()));
   out += line;
   std::snprintf(line, sizeof line, "ITEM: NUMBER OF ATOMS\n%zu\n", p.size());
   out += line;
@@ -193,9 +195,12 @@ std::string lammps_dump_frame(const World& world, double t_star) {
   std::snprintf(line, sizeof line, "ITEM: BOX BOUNDS ff ff pp\n%.9g %.9g\n%.9g %.9g\n%.9g %.9g\n",
                 xlo, xhi, ylo, yhi, -rmax, rmax);
   out += line;
-  out += "ITEM: ATOMS id type x y radius vx vy omegaz\n";
+  // z and vz (always 0) are there for ASE: its lammps-dump-text reader takes positions and
+  // velocities only as whole x y z and vx vy vz triples, and without z it builds no atoms at all
+  // (LAMMPS's read_dump of a 2D box reads x y vx vy and skips the other columns).
+  out += "ITEM: ATOMS id type x y z radius vx vy vz omegaz\n";
   for (std::size_t k = 0; k < p.size(); ++k) {
-    std::snprintf(line, sizeof line, "%lld %d %.9g %.9g %.9g %.9g %.9g %.9g\n",
+    std::snprintf(line, sizeof line, "%lld %d %.9g %.9g 0 %.9g %.9g %.9g 0 %.9g\n",
                   static_cast<long long>(p.id[k]), p.species[k] + 1, p.x[k], p.y[k], p.radius[k],
                   p.vx[k], p.vy[k], p.omega[k]);
     out += line;

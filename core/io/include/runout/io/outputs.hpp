@@ -32,7 +32,8 @@ std::string summary_json(const RunResult& r, const SummaryContext& c);
 std::string settle_report_json(const SettleReport& s);
 std::optional<SettleReport> read_settle_report(const std::string& text);
 std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesSelection& want = {});
-// One frame: ITEM: TIMESTEP ... ITEM: ATOMS id type x y radius vx vy omegaz (type = species + 1).
+// One frame: ITEM: TIME (t*), TIMESTEP, ... ATOMS id type x y z radius vx vy vz omegaz (z = vz = 0;
+// type = species + 1, the species in name order). Read by OVITO, ASE and LAMMPS's read_dump.
 std::string lammps_dump_frame(const World& world, double t_star);
 
 }  // namespace runout::io
