@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <exception>
 
+#include "cli_checks.hpp"
 #include "render_cli.hpp"
 #include "run_command.hpp"
 #include "runout/errors.hpp"
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0LL, 9000000000000000000LL));
   run_cmd->add_option("--dump-every", run.dump_every,
                       "write LAMMPS dump frames every DT_STAR (0: off; default: output.dump_every)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(runout::app::real_in(0.0, 1e7));
   run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin (or the one before it) if present");
   run_cmd->add_flag("--overwrite", run.overwrite, "replace the results of another scene in OUT (runout's own files only)");
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
@@ -109,7 +110,7 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--tolerance", compare.tolerance, "a pixel differs if a channel differs by more (0-255)")
       ->check(CLI::Range(0, 255));
   compare_cmd->add_option("--max-share", compare.max_share, "largest share of differing pixels that still matches")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(runout::app::real_in(0.0, 1.0));
   compare_cmd->add_option("--diff", compare.diff, "write a diff image (differing pixels red)");
 
   try {
