@@ -28,6 +28,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--dump-every", run.dump_every,
                       "write LAMMPS dump frames every DT_STAR (0: off; default: output.dump_every)")
       ->check(runout::app::real_in(0.0, 1e7));
+  run_cmd->add_option("--vtk-every", run.vtk_every,
+                      "write VTK PolyData frames (ParaView: OUT/vtk/frames.pvd) every DT_STAR (0: off; default: "
+                      "output.vtk_every)")
+      ->check(runout::app::real_in(0.0, 1e7));
   run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin (or the one before it) if present");
   run_cmd->add_flag("--overwrite", run.overwrite, "replace the results of another scene in OUT (runout's own files only)");
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");

@@ -4,7 +4,7 @@ set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 packages=(
   build-essential cmake python3 python3-matplotlib
-  python3-ase lammps
+  python3-ase lammps python3-vtk9
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
   clang libclang-rt-14-dev libomp-dev

@@ -124,6 +124,7 @@ TEST(SceneFile, WorkIsBoundedForEveryAcceptedValue) {
   setup_error("output.timeseries_every=1e-300", {"output.timeseries_every", "shorter than one time step"});
   setup_error("output.checkpoint_every=1e-9", {"output.checkpoint_every", "shorter than one time step"});
   setup_error("output.dump_every=1e-9", {"output.dump_every", "shorter than one time step"});
+  setup_error("output.vtk_every=1e-9", {"output.vtk_every", "shorter than one time step"});
 }
 
 TEST(SceneFile, WallsStateTheirInside) {

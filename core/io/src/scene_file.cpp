@@ -371,7 +371,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   }
   if (auto t = top.subtable("output")) {
     TableReader r(*t, "output", source);
-    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "end_time",
+    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "vtk_every", "end_time",
              "basal_layer_packing"}, "");
     if (const toml::array* list = r.array("series")) {
       s.output.series = {false, false, false, false, false};
@@ -392,6 +392,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
     r.number("checkpoint_every", s.output.checkpoint_every, closed(0, 1e7));
     r.number("dump_every", s.output.dump_every, closed(0, 1e7));
+    r.number("vtk_every", s.output.vtk_every, closed(0, 1e7));
     r.number("end_time", s.output.end_time, closed(0, 1e7));
     r.number("basal_layer_packing", s.output.basal_layer_packing, {0, 1, true, false});
     r.finish();
@@ -580,6 +581,7 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                       {"timeseries_every", s.output.timeseries_every},
                                       {"checkpoint_every", s.output.checkpoint_every},
                                       {"dump_every", s.output.dump_every},
+                                      {"vtk_every", s.output.vtk_every},
                                       {"end_time", s.output.end_time},
                                       {"basal_layer_packing", s.output.basal_layer_packing}});
   }
