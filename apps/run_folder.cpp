@@ -41,7 +41,9 @@ void check_creatable_under(const fs::path& target, const std::string& option) {
 }
 
 bool is_own_snapshot(const std::string& name) {
-  return name.rfind("snapshot_t", 0) == 0 && name.size() > 14 && name.substr(name.size() - 4) == ".png";
+  if (name.rfind("snapshot_t", 0) != 0 || name.size() <= 14) return false;
+  const std::string ext = name.substr(name.size() - 4);
+  return ext == ".png" || ext == ".pdf" || ext == ".svg";
 }
 
 bool is_own_state(const std::string& name) {

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
                       "save the whole state at these t*, e.g. 0,20,40 (OUT/states/state_t*.bin: checkpoints for "
                       "`runout render` and `runout plot`; times after the run's end are not reached)");
   runout::app::add_picture_options(run_cmd, run.pictures, true);
+  run_cmd->add_option("--snapshot-format", run.pictures.snapshot_format, "png | pdf | svg: the snapshots' format (default png)")
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
 
   runout::app::BenchOptions bench;
   auto* bench_cmd = cli.add_subcommand("bench", "measure particle-steps per second on a flowing pile");
@@ -99,12 +101,15 @@ int main(int argc, char** argv) {
   derive_cmd->add_flag("--json", derive.json, "print JSON instead of the table");
 
   runout::app::RenderOptions render;
-  auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
+  auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG, PDF or SVG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
-  render_cmd->add_option("-o,--output", render.output, "PNG to write")->required();
+  render_cmd->add_option("-o,--output", render.output, "picture to write (.png, .pdf, .svg)")->required();
   render_cmd->add_option("--scene", render.scene, "scene (default: scene.resolved.toml beside the checkpoint, or above it for OUT/states/)")
       ->check(CLI::ExistingFile);
   runout::app::add_picture_options(render_cmd, render.picture, false);
+  render_cmd->add_option("--snapshot-format", render.picture.snapshot_format,
+                         "png | pdf | svg (default: from the -o name's extension, else png)")
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
 
   runout::app::CompareOptions compare;
   auto* compare_cmd = cli.add_subcommand(
