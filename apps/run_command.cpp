@@ -168,6 +168,9 @@ class SignalScope {
 
 // Every picture option a run will use, checked before anything is settled or written.
 void check_picture_options(const PictureOptions& o, const SceneDef& scene) {
+  // Movie frames stay PNG: a format with no snapshot to apply to is a mistake, not a no-op.
+  if (!o.snapshot_format.empty() && o.snapshots.empty())
+    throw UsageError("--snapshot-format needs --snapshots (the movie and --frames are always video and PNG)");
   if (!o.wants_pictures()) return;
   parse_frame_size(o.size);
   if (o.camera == "window") parse_window(o.window);

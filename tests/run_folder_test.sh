@@ -135,7 +135,9 @@ args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7
 pid=$!
 sleep 2.2
 kill -9 $pid; wait $pid 2>/dev/null
-if [ -e "$d/checkpoint.prev.bin" ]; then
+# (Both must be there: a kill between keeping the old checkpoint as checkpoint.prev.bin and
+# renaming the new one into place leaves only the previous one, which a resume takes as it is.)
+if [ -e "$d/checkpoint.prev.bin" ] && [ -e "$d/checkpoint.bin" ]; then
   printf '\x55' | dd of="$d/checkpoint.bin" bs=1 seek=200 conv=notrunc status=none
   out=$("$bin" "${args[@]}" --resume 2>&1 >/dev/null); rc=$?
   [ $rc -eq 0 ] && grep -q "checkpoint.bin: checkpoint checksum mismatch" <<<"$out" && grep -q "resuming from the previous checkpoint" <<<"$out" \
