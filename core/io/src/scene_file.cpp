@@ -588,9 +588,8 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
   return root;
 }
 
-}  // namespace
-
-std::string write_scene(const SceneDef& s) {
+// The whole scene as a table: what scene.resolved.toml says and the physics key is made of.
+toml::table scene_table(const SceneDef& s) {
   toml::table root = physics_tables(s, true);
   if (!s.walls.empty()) {
     toml::array walls;
@@ -612,6 +611,10 @@ std::string write_scene(const SceneDef& s) {
                                   {"diameter", p.diameter}});
     root.insert("particles", parts);
   }
+  return root;
+}
+
+std::string format_scene(const toml::table& root) {
   std::ostringstream out;
   out << "# Every value this run used, defaults included (runout scene.resolved.toml)\n";
   out << toml::toml_formatter(root, toml::toml_formatter::default_flags &
@@ -620,12 +623,21 @@ std::string write_scene(const SceneDef& s) {
   return out.str();
 }
 
+}  // namespace
+
+std::string write_scene(const SceneDef& s) { return format_scene(scene_table(s)); }
+
 std::uint64_t physics_key(const SceneDef& scene) {
   SceneDef s = scene;
   s.rest = RestDef{};
   s.output = OutputDef{};
   s.name.clear();
-  return fnv1a64(write_scene(s));
+  toml::table root = scene_table(s);
+  // The key is the text of the scene with its output settings at their defaults, so an output
+  // key added later would change every key and orphan the checkpoints written before it (a run
+  // could no longer be resumed or drawn). Keys added to [output] since are left out of it.
+  for (const char* added : {"vtk_every"}) root["output"].as_table()->erase(added);
+  return fnv1a64(format_scene(root));
 }
 
 std::string pile_key_text(const SceneDef& s) {
