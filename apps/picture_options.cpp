@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli_checks.hpp"
 #include "render_cli.hpp"
 #include "runout/errors.hpp"
 
@@ -18,7 +19,7 @@ void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie) {
     cmd->add_option("--snapshots", o.snapshots, "PNG snapshots at these t*, e.g. 0,20,40,60,80,100,250");
     cmd->add_option("--snapshot-dir", o.snapshot_dir, "folder for snapshots (default: --out)");
     cmd->add_option("--fps", o.fps, "movie frames per second")->check(CLI::Range(1, 240));
-    cmd->add_option("--frame-every", o.frame_every, "t* between movie frames")->check(CLI::Range(1e-3, 1e6));
+    cmd->add_option("--frame-every", o.frame_every, "t* between movie frames")->check(real_in(1e-3, 1e6));
     cmd->add_option("--crf", o.crf, "H.264 quality, 0..51 (lower is better)")->check(CLI::Range(0, 51));
     cmd->add_option("--preset", o.preset, "x264 preset (ultrafast .. veryslow)");
     cmd->add_flag("--lossless", o.lossless, "lossless H.264 (yuv444p, qp 0; not playable in browsers)");
@@ -29,11 +30,11 @@ void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie) {
       ->check(CLI::IsMember({"whole", "front", "deposit", "window"}));
   cmd->add_option("--window", o.window, "x0,y0,x1,y1 in metres, for --camera window");
   cmd->add_option("--size", o.size, "frame size WxH in pixels (odd sizes are rounded up)");
-  cmd->add_option("--front-width", o.front_width, "front camera: window width in D")->check(CLI::Range(1.0, 1e5));
+  cmd->add_option("--front-width", o.front_width, "front camera: window width in D")->check(real_in(1.0, 1e5));
   cmd->add_option("--spin-limit", o.spin_limit, "spin colours saturate at +-this omega sqrt(d/g)")
-      ->check(CLI::Range(1e-6, 1e6));
+      ->check(real_in(1e-6, 1e6));
   cmd->add_option("--speed-limit", o.speed_limit, "speed colours saturate at this |v|/sqrt(g d) (0: free-fall speed)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(real_in(0.0, 1e6));
   cmd->add_flag("--spokes", o.spokes, "draw a spoke showing each disc's rotation");
   cmd->add_flag("--outlines", o.outlines, "draw a thin darker rim on each disc");
   cmd->add_flag("--transparent", o.transparent, "PNG with a transparent background");

@@ -1,6 +1,7 @@
 // The picture module (runout_pictures.so): everything that draws, behind PictureApi.
 #include "render_cli.hpp"
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "runout/io/scene_file.hpp"
 #include "runout/render/colormap.hpp"
 #include "runout/render/recorders.hpp"
+#include "runout/render/vector.hpp"
 #include "runout/setup.hpp"
 
 namespace runout::app {
@@ -69,7 +71,8 @@ class Session : public PictureSession {
     }
     if (!o.snapshots.empty()) {
       const auto times = parse_times(o.snapshots);
-      snapshots_.emplace(frame, scene, setup, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times);
+      snapshots_.emplace(frame, scene, setup, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times,
+                         render::parse_picture_format(o.snapshot_format.empty() ? "png" : o.snapshot_format));
       run.add_observer(*snapshots_, {0.0, 0.0, times});
       run.set_min_end_time(times.back());  // the run goes on to the last snapshot
     }
@@ -101,7 +104,21 @@ std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, Avalanc
   return std::make_unique<Session>(o, run, scene, setup, out_dir);
 }
 
+// --snapshot-format if given, else the -o name's extension (.pdf, .svg), else PNG. A format
+// that contradicts the name's extension is refused: a PDF named f.png helps no one.
+render::PictureFormat render_format(const RenderOptions& o) {
+  std::string ext = std::filesystem::path(o.output).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool known = ext == ".png" || ext == ".pdf" || ext == ".svg";
+  if (o.picture.snapshot_format.empty()) return render::parse_picture_format(known ? ext.substr(1) : "png");
+  if (known && ext.substr(1) != o.picture.snapshot_format)
+    throw UsageError("--snapshot-format " + o.picture.snapshot_format + " but -o " + o.output + " names a " +
+                     ext.substr(1) + " file");
+  return render::parse_picture_format(o.picture.snapshot_format);
+}
+
 int render_command(const RenderOptions& o) {
+  const render::PictureFormat format = render_format(o);
   // Default: the run's scene beside the checkpoint, or one folder up for OUT/states/*.bin.
   std::string scene_path = o.scene;
   if (scene_path.empty()) {
@@ -116,16 +133,16 @@ int render_command(const RenderOptions& o) {
   const std::string bytes = io::read_regular_file(o.checkpoint, UINTMAX_MAX);  // not a FIFO or device
   decode_checkpoint(bytes, io::physics_key(scene), world, o.checkpoint);
   const double t_star = world.time() / setup.unit_time;
-  render::FrameMaker maker(frame_options(o.picture), scene, setup);
-  const render::Image image = maker.make(world, t_star);
-  render::write_png(o.output, image, o.picture.transparent);
+  const render::FrameOptions frame = frame_options(o.picture);
+  render::FrameMaker maker(frame, scene, setup);
+  render::write_picture(o.output, maker, world, t_star, format);
   if (!o.describe.empty()) {
     const render::View& v = maker.view();
     nlohmann::json j;
     j["t_star"] = t_star;
-    j["width"] = image.width;
-    j["height"] = image.height;
-    j["extent"] = {v.x0, v.x0 + image.width / v.scale, v.y0, v.y0 + image.height / v.scale};
+    j["width"] = frame.width;
+    j["height"] = frame.height;
+    j["extent"] = {v.x0, v.x0 + frame.width / v.scale, v.y0, v.y0 + frame.height / v.scale};
     j["legend"] = nlohmann::json::array();
     for (const auto& [c, label] : maker.legend_entries()) {
       char hex[8];

@@ -23,6 +23,7 @@ struct PictureOptions {
   std::string camera = "whole";
   std::string window;        // "x0,y0,x1,y1" (m), for --camera window
   std::string size = "1280x720";
+  std::string snapshot_format;  // png, pdf or svg; empty: png (render: from the -o name)
   int fps = 30;
   double frame_every = 0.5;  // t* between movie frames
   int crf = 20;

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -57,6 +60,51 @@ class DumpWriter : public Observer {
 
  private:
   std::string dir_;
+};
+
+// ParaView frames, one VTK PolyData file each (vtk/frame.<step>.vtp), and vtk/frames.pvd, the
+// collection that lists every frame with its t*, rewritten after each frame so it always lists
+// the frames on disk. A run resumed from an earlier checkpoint (or run on to a later time)
+// goes on from the frames already there, staged or published: their times are read back from
+// the frames themselves (their TimeValue), so no list is lost with a killed process.
+class VtkWriter : public Observer {
+ public:
+  VtkWriter(std::string dir, const std::string& published, const SceneSetup& setup, double packing)
+      : dir_(std::move(dir)), setup_(setup), packing_(packing) {
+    io::make_directories(dir_);
+    for (const std::string& folder : {published, dir_}) {
+      std::error_code ec;
+      for (const auto& e : std::filesystem::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        long long step = 0;
+        char tail[8] = {};
+        if (std::sscanf(name.c_str(), "frame.%lld.%7s", &step, tail) != 2 || std::string(tail) != "vtp") continue;
+        std::ifstream in(e.path(), std::ios::binary);
+        std::string head(1024, '\0');
+        in.read(head.data(), static_cast<std::streamsize>(head.size()));
+        head.resize(static_cast<std::size_t>(in.gcount()));
+        if (const auto t = io::vtk_frame_time(head)) frames_[step] = {*t, name};
+      }
+    }
+  }
+  void observe(const World& world, double t_star) override {
+    // Basal-layer membership as the measurements and the pictures have it (measure.hpp).
+    const std::vector<char> layer =
+        basal_layer(world.particles(), world.segments(), setup_.roles, setup_.large_diameter, packing_).member;
+    char name[64];
+    std::snprintf(name, sizeof name, "frame.%09lld.vtp", static_cast<long long>(world.step_count()));
+    io::write_file_atomically(dir_ + "/" + name, io::vtk_polydata_frame(world, t_star, layer));
+    frames_[world.step_count()] = {t_star, name};
+    std::vector<io::VtkCollectionEntry> list;
+    for (const auto& [step, entry] : frames_) list.push_back(entry);
+    io::write_file_atomically(dir_ + "/frames.pvd", io::vtk_collection(list));
+  }
+
+ private:
+  std::string dir_;
+  const SceneSetup& setup_;
+  double packing_;
+  std::map<long long, io::VtkCollectionEntry> frames_;  // by step
 };
 
 // The whole state at chosen t*, each a checkpoint (it resumes, renders and decodes like one):
@@ -120,6 +168,9 @@ class SignalScope {
 
 // Every picture option a run will use, checked before anything is settled or written.
 void check_picture_options(const PictureOptions& o, const SceneDef& scene) {
+  // Movie frames stay PNG: a format with no snapshot to apply to is a mistake, not a no-op.
+  if (!o.snapshot_format.empty() && o.snapshots.empty())
+    throw UsageError("--snapshot-format needs --snapshots (the movie and --frames are always video and PNG)");
   if (!o.wants_pictures()) return;
   parse_frame_size(o.size);
   if (o.camera == "window") parse_window(o.window);
@@ -149,6 +200,7 @@ int run_command(const RunOptions& o) {
                               o.scene_text.empty() ? io::embedded_quick_scene() : o.scene_text, source);
   if (o.seed >= 0) scene.preparation.seed = static_cast<std::uint64_t>(o.seed);
   if (o.dump_every >= 0) scene.output.dump_every = o.dump_every;
+  if (o.vtk_every >= 0) scene.output.vtk_every = o.vtk_every;
   if (o.end_at_last_snapshot) {
     // Nothing else asked for more: the run ends with the last picture (output.end_time, so the
     // resolved scene repeats it).
@@ -212,6 +264,11 @@ int run_command(const RunOptions& o) {
   if (scene.output.dump_every > 0) {
     dumps.emplace(folder.staging + "/dump");
     run.add_observer(*dumps, {scene.output.dump_every, 0.0, {}});
+  }
+  std::optional<VtkWriter> vtk;
+  if (scene.output.vtk_every > 0) {
+    vtk.emplace(folder.staging + "/vtk", folder.vtk, setup, scene.output.basal_layer_packing);
+    run.add_observer(*vtk, {scene.output.vtk_every, 0.0, {}});
   }
   std::optional<StateWriter> states;
   if (!state_times.empty()) {

@@ -18,6 +18,7 @@ struct RunOptions {
   int threads = 0;  // 0: all cores
   long long seed = -1;
   double dump_every = -1;  // < 0: from the scene
+  double vtk_every = -1;   // < 0: from the scene
   bool resume = false;
   bool overwrite = false;  // replace another scene's results in out_dir (runout's own files only)
   std::string cache_dir;   // empty: $XDG_CACHE_HOME/runout or ~/.cache/runout

@@ -41,7 +41,9 @@ void check_creatable_under(const fs::path& target, const std::string& option) {
 }
 
 bool is_own_snapshot(const std::string& name) {
-  return name.rfind("snapshot_t", 0) == 0 && name.size() > 14 && name.substr(name.size() - 4) == ".png";
+  if (name.rfind("snapshot_t", 0) != 0 || name.size() <= 14) return false;
+  const std::string ext = name.substr(name.size() - 4);
+  return ext == ".png" || ext == ".pdf" || ext == ".svg";
 }
 
 bool is_own_state(const std::string& name) {
@@ -59,6 +61,7 @@ RunFolder::RunFolder(std::string d)
       previous_checkpoint(dir + "/checkpoint.prev.bin"),
       staging(dir + "/.partial"),
       dump(dir + "/dump"),
+      vtk(dir + "/vtk"),
       states(dir + "/states"),
       preparation(dir + "/preparation.json") {}
 
@@ -88,7 +91,7 @@ namespace {
 bool holds_own_files(const RunFolder& f) {
   std::error_code ec;
   for (const std::string& p : {f.scene, f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint,
-                               f.staging, f.dump, f.states, f.preparation})
+                               f.staging, f.dump, f.vtk, f.states, f.preparation})
     if (path_present(p)) return true;
   for (const auto& e : fs::directory_iterator(f.dir, ec))
     if (is_own_snapshot(e.path().filename().string())) return true;
@@ -153,11 +156,13 @@ void clear_own_files(const RunFolder& f) {
   // summary.json first: from here on the folder is not a complete result.
   for (const std::string& p : {f.summary, f.timeseries, f.checkpoint, f.previous_checkpoint, f.scene, f.preparation})
     fs::remove(p, ec);
-  for (const std::string& d : {f.staging + "/dump", f.staging + "/states", f.staging, f.dump, f.states}) {
+  for (const std::string& d : {f.staging + "/dump", f.staging + "/vtk", f.staging + "/states", f.staging, f.dump,
+                               f.vtk, f.states}) {
     for (const auto& e : fs::directory_iterator(d, ec)) {
       const std::string name = e.path().filename().string();
-      if ((name.rfind("frame.", 0) == 0 && e.path().extension() == ".lammpstrj") || is_own_snapshot(name) ||
-          is_own_state(name))
+      const bool frame = name.rfind("frame.", 0) == 0 &&
+                         (e.path().extension() == ".lammpstrj" || e.path().extension() == ".vtp");
+      if (frame || name == "frames.pvd" || is_own_snapshot(name) || is_own_state(name))
         fs::remove(e.path(), ec);
     }
     fs::remove(d, ec);  // only if now empty: a user's own file in it stays

@@ -12,11 +12,12 @@
 
 namespace runout::app {
 
-// The files of a run in DIR. Results that appear during a run (dump frames, snapshots in DIR)
+// The files of a run in DIR. Results that appear during a run (dump and VTK frames, snapshots in DIR)
 // are staged in DIR/.partial and published with the others at the end, summary.json last.
 struct RunFolder {
   explicit RunFolder(std::string dir);
   std::string dir, scene, summary, timeseries, checkpoint, previous_checkpoint, staging, dump;
+  std::string vtk;          // ParaView frames (runout run --vtk-every) and their frames.pvd
   std::string states;       // whole states at chosen t* (runout run --states), checkpoints
   std::string preparation;  // the pile's settle report, so a resumed run reports it too
 };

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <exception>
 
+#include "cli_checks.hpp"
 #include "render_cli.hpp"
 #include "run_command.hpp"
 #include "runout/errors.hpp"
@@ -26,7 +27,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0LL, 9000000000000000000LL));
   run_cmd->add_option("--dump-every", run.dump_every,
                       "write LAMMPS dump frames every DT_STAR (0: off; default: output.dump_every)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(runout::app::real_in(0.0, 1e7));
+  run_cmd->add_option("--vtk-every", run.vtk_every,
+                      "write VTK PolyData frames (ParaView: OUT/vtk/frames.pvd) every DT_STAR (0: off; default: "
+                      "output.vtk_every)")
+      ->check(runout::app::real_in(0.0, 1e7));
   run_cmd->add_flag("--resume", run.resume, "continue from OUT/checkpoint.bin (or the one before it) if present");
   run_cmd->add_flag("--overwrite", run.overwrite, "replace the results of another scene in OUT (runout's own files only)");
   run_cmd->add_option("--cache-dir", run.cache_dir, "settled-pile cache (default ~/.cache/runout)");
@@ -38,6 +43,8 @@ int main(int argc, char** argv) {
                       "save the whole state at these t*, e.g. 0,20,40 (OUT/states/state_t*.bin: checkpoints for "
                       "`runout render` and `runout plot`; times after the run's end are not reached)");
   runout::app::add_picture_options(run_cmd, run.pictures, true);
+  run_cmd->add_option("--snapshot-format", run.pictures.snapshot_format, "png | pdf | svg: the snapshots' format (default png)")
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
 
   runout::app::BenchOptions bench;
   auto* bench_cmd = cli.add_subcommand("bench", "measure particle-steps per second on a flowing pile");
@@ -94,12 +101,15 @@ int main(int argc, char** argv) {
   derive_cmd->add_flag("--json", derive.json, "print JSON instead of the table");
 
   runout::app::RenderOptions render;
-  auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG");
+  auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG, PDF or SVG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
-  render_cmd->add_option("-o,--output", render.output, "PNG to write")->required();
+  render_cmd->add_option("-o,--output", render.output, "picture to write (.png, .pdf, .svg)")->required();
   render_cmd->add_option("--scene", render.scene, "scene (default: scene.resolved.toml beside the checkpoint, or above it for OUT/states/)")
       ->check(CLI::ExistingFile);
   runout::app::add_picture_options(render_cmd, render.picture, false);
+  render_cmd->add_option("--snapshot-format", render.picture.snapshot_format,
+                         "png | pdf | svg (default: from the -o name's extension, else png)")
+      ->check(CLI::IsMember({"png", "pdf", "svg"}));
 
   runout::app::CompareOptions compare;
   auto* compare_cmd = cli.add_subcommand(
@@ -109,7 +119,7 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--tolerance", compare.tolerance, "a pixel differs if a channel differs by more (0-255)")
       ->check(CLI::Range(0, 255));
   compare_cmd->add_option("--max-share", compare.max_share, "largest share of differing pixels that still matches")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(runout::app::real_in(0.0, 1.0));
   compare_cmd->add_option("--diff", compare.diff, "write a diff image (differing pixels red)");
 
   try {

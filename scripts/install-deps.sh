@@ -4,11 +4,13 @@ set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 packages=(
   build-essential cmake python3 python3-matplotlib
+  python3-ase lammps python3-vtk9
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
   clang libclang-rt-14-dev libomp-dev
   parallel slurm-wlm munge chromium
-  pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core
+  pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core libcairo2-dev
+  poppler-utils librsvg2-bin
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
 )
 missing=()

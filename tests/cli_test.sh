@@ -64,7 +64,7 @@ b=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two_again/summary.json")
 
 # Dumps: LAMMPS dump custom frames.
 check dump 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/dump" -q --dump-every 1
-grep -q 'ITEM: ATOMS id type x y radius vx vy omegaz' "$work"/dump/dump/frame.000000000.lammpstrj ||
+grep -q 'ITEM: ATOMS id type x y z radius vx vy vz omegaz' "$work"/dump/dump/frame.000000000.lammpstrj ||
   { echo "FAIL dump: no frame 0"; fail=$((fail + 1)); }
 
 # Resume: a run stopped early and resumed matches the run made in one go.

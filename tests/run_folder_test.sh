@@ -49,8 +49,9 @@ TOML
 # 1. Another scene's folder is refused and left exactly as it was; its checkpoint still renders.
 pictures=()
 [ -e "$(dirname "$bin")/runout_pictures.so" ] && pictures=(--snapshots 0,1)
-"$bin" run "$box" --out "$work/A" -q --dump-every 0.5 "${pictures[@]}" >/dev/null || bad "box run"
-[ -e "$work/A/dump" ] && [ ! -e "$work/A/.partial" ] && ok || bad "the box run's results were not published: $(ls -a "$work/A")"
+"$bin" run "$box" --out "$work/A" -q --dump-every 0.5 --vtk-every 0.5 "${pictures[@]}" >/dev/null || bad "box run"
+[ -e "$work/A/dump" ] && [ -s "$work/A/vtk/frames.pvd" ] && [ ! -e "$work/A/.partial" ] && ok ||
+  bad "the box run's results were not published: $(ls -a "$work/A")"
 before=$(tree_sum "$work/A")
 out=$("$bin" run "$work/two.toml" --out "$work/A" -q 2>&1); rc=$?
 [ $rc -eq 2 ] && grep -q "holds the results of another scene" <<<"$out" && ok || bad "other scene: exit $rc: $out"
@@ -64,7 +65,7 @@ fi
 # 2. --overwrite replaces runout's own files only (the old dump frames go, a user's file stays).
 echo "mine" >"$work/A/notes.txt"
 "$bin" run "$work/two.toml" --out "$work/A" -q --overwrite >/dev/null && ok || bad "--overwrite run"
-[ -e "$work/A/notes.txt" ] && [ ! -e "$work/A/dump" ] && ! ls "$work/A"/snapshot_t*.png >/dev/null 2>&1 &&
+[ -e "$work/A/notes.txt" ] && [ ! -e "$work/A/dump" ] && [ ! -e "$work/A/vtk" ] && ! ls "$work/A"/snapshot_t*.png >/dev/null 2>&1 &&
   [ -s "$work/A/summary.json" ] && ok || bad "--overwrite cleared the wrong files: $(ls "$work/A")"
 # the same scene again replaces its own complete result without --overwrite
 "$bin" run "$work/two.toml" --out "$work/A" -q >/dev/null && ok || bad "rerun of the same scene"
@@ -88,21 +89,27 @@ cp "$work/A/timeseries.csv" "$work/two_series.csv"; cp "$work/A/summary.json" "$
 "$bin" run "$work/two.toml" --out "$work/A" -q --resume >/dev/null && ok || bad "resume of an ended run"
 cmp -s "$work/A/timeseries.csv" "$work/two_series.csv" && same_summary "$work/A/summary.json" "$work/two_summary.json" && ok || bad "resuming an ended run changed its results"
 # ... and keeps its published dump frames and states (the resumed run stages empty folders)
-"$bin" run "$work/two.toml" --out "$work/S" -q --dump-every 0.5 --states 0,0.5 >/dev/null || bad "run with states"
-listing=$(cd "$work/S" && sha256sum dump/* states/*)
-[ "$(ls "$work/S/states" | wc -l)" -eq 2 ] && [ "$(ls "$work/S/dump" | wc -l)" -gt 1 ] && ok || bad "states/dump: $listing"
-"$bin" run "$work/two.toml" --out "$work/S" -q --resume --dump-every 0.5 --states 0,0.5 >/dev/null &&
-  [ "$(cd "$work/S" && sha256sum dump/* states/*)" = "$listing" ] && ok || bad "resuming an ended run lost its dump frames or states: $(ls -R "$work/S")"
+"$bin" run "$work/two.toml" --out "$work/S" -q --dump-every 0.5 --vtk-every 0.5 --states 0,0.5 >/dev/null || bad "run with states"
+listing=$(cd "$work/S" && sha256sum dump/* vtk/* states/*)
+[ "$(ls "$work/S/states" | wc -l)" -eq 2 ] && [ "$(ls "$work/S/dump" | wc -l)" -gt 1 ] &&
+  [ "$(ls "$work/S/vtk" | wc -l)" -eq "$(( $(ls "$work/S/dump" | wc -l) + 1 ))" ] && ok || bad "states/dump/vtk: $listing"
+"$bin" run "$work/two.toml" --out "$work/S" -q --resume --dump-every 0.5 --vtk-every 0.5 --states 0,0.5 >/dev/null &&
+  [ "$(cd "$work/S" && sha256sum dump/* vtk/* states/*)" = "$listing" ] && ok || bad "resuming an ended run lost its dump or VTK frames or states: $(ls -R "$work/S")"
+# ... and run on to a later end, its collection lists the frames of both parts, as one run to
+# that end has them
+"$bin" run "$work/two.toml" --out "$work/S" -q --resume --dump-every 0.5 --vtk-every 0.5 --set output.end_time=7 >/dev/null &&
+  "$bin" run "$work/two.toml" --out "$work/S7" -q --dump-every 0.5 --vtk-every 0.5 --set output.end_time=7 >/dev/null &&
+  diff -r "$work/S/vtk" "$work/S7/vtk" >/dev/null && ok || bad "a run continued to a later end: vtk/ differs from one run to it"
 
 # 4. The reference: the quick pile run without a stop (this also settles the cached pile).
-"$bin" run "$quick" --out "$work/ref" -q "${cache[@]}" --set output.checkpoint_every=3.7 >/dev/null || bad "reference run"
+"$bin" run "$quick" --out "$work/ref" -q "${cache[@]}" --set output.checkpoint_every=3.7 --vtk-every 5 >/dev/null || bad "reference run"
 
 # 5. Signals: SIGINT and SIGTERM stop after a whole step with a checkpoint, exit 130 / 143,
 # remove the unfinished movie, leave no summary; the unfinished folder refuses a plain rerun;
 # --resume finishes it exactly as the reference.
 for sig in INT TERM; do
   d="$work/sig$sig"
-  args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7)
+  args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7 --vtk-every 5)
   movie=()
   [ -e "$(dirname "$bin")/runout_pictures.so" ] && movie=(--movie "$d/flow.mp4")
   "$bin" "${args[@]}" "${movie[@]}" >/dev/null 2>"$work/sig.err" &
@@ -117,18 +124,20 @@ for sig in INT TERM; do
   [ $rc -eq 2 ] && grep -q "unfinished run" <<<"$out" && ok || bad "plain rerun of an unfinished run: exit $rc: $out"
   "$bin" "${args[@]}" --resume >/dev/null && ok || bad "SIG$sig resume"
   same_summary "$d/summary.json" "$work/ref/summary.json" && cmp -s "$d/timeseries.csv" "$work/ref/timeseries.csv" \
-    && ok || bad "SIG$sig + --resume differs from the run never stopped"
+    && diff -r "$d/vtk" "$work/ref/vtk" >/dev/null && ok || bad "SIG$sig + --resume differs from the run never stopped"
 done
 
 # 6. kill -9 at a random moment, then a damaged newest checkpoint: the run falls back to the one
 # before, says so, and still ends exactly as the reference.
 d="$work/kill9"
-args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7)
+args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7 --vtk-every 5)
 "$bin" "${args[@]}" >/dev/null 2>&1 &
 pid=$!
 sleep 2.2
 kill -9 $pid; wait $pid 2>/dev/null
-if [ -e "$d/checkpoint.prev.bin" ]; then
+# (Both must be there: a kill between keeping the old checkpoint as checkpoint.prev.bin and
+# renaming the new one into place leaves only the previous one, which a resume takes as it is.)
+if [ -e "$d/checkpoint.prev.bin" ] && [ -e "$d/checkpoint.bin" ]; then
   printf '\x55' | dd of="$d/checkpoint.bin" bs=1 seek=200 conv=notrunc status=none
   out=$("$bin" "${args[@]}" --resume 2>&1 >/dev/null); rc=$?
   [ $rc -eq 0 ] && grep -q "checkpoint.bin: checkpoint checksum mismatch" <<<"$out" && grep -q "resuming from the previous checkpoint" <<<"$out" \
@@ -137,7 +146,7 @@ else
   "$bin" "${args[@]}" --resume >/dev/null 2>&1 || bad "resume after kill -9"
 fi
 same_summary "$d/summary.json" "$work/ref/summary.json" && cmp -s "$d/timeseries.csv" "$work/ref/timeseries.csv" \
-  && ok || bad "kill -9 + --resume differs from the run never stopped"
+  && diff -r "$d/vtk" "$work/ref/vtk" >/dev/null && ok || bad "kill -9 + --resume differs from the run never stopped"
 
 # 7. A dangling checkpoint symlink is named, not silently taken as "no checkpoint"; stale
 # temporaries of dead runs are removed, a live process's are not.

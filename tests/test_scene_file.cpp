@@ -124,6 +124,7 @@ TEST(SceneFile, WorkIsBoundedForEveryAcceptedValue) {
   setup_error("output.timeseries_every=1e-300", {"output.timeseries_every", "shorter than one time step"});
   setup_error("output.checkpoint_every=1e-9", {"output.checkpoint_every", "shorter than one time step"});
   setup_error("output.dump_every=1e-9", {"output.dump_every", "shorter than one time step"});
+  setup_error("output.vtk_every=1e-9", {"output.vtk_every", "shorter than one time step"});
 }
 
 TEST(SceneFile, WallsStateTheirInside) {
@@ -164,6 +165,48 @@ TEST(SceneFile, ResolvedSceneReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.material.restitution, 0.123456789012345);
   EXPECT_DOUBLE_EQ(back.walls[0].points[1].second, 4.4);
   EXPECT_EQ(back.walls[0].inside, WallInside::right);
+}
+
+TEST(SceneFile, PhysicsKeyOutlivesNewOutputKeys) {
+  // The key stored in a checkpoint that runout 4c4f9ed (before output.vtk_every) wrote for this
+  // scene: read from the file's bytes 20-27. Its checkpoints must still resume and render.
+  const std::string text = R"(name = "free_flight"
+[species.large]
+diameter = 1.0
+[species.small]
+diameter = 0.5
+[[walls]]
+points = [[-30.0, 60.0], [-30.0, 0.0], [30.0, 0.0], [30.0, 60.0]]
+bed = true
+inside = "left"
+[[particles]]
+species = "small"
+x = -3.0
+y = 10.0
+vx = 1.5
+vy = 2.0
+omega = 3.0
+[[particles]]
+species = "large"
+x = 4.0
+y = 12.0
+vx = -0.75
+vy = 0.5
+omega = -1.25
+[[particles]]
+species = "small"
+x = 0.0
+y = 20.0
+vy = 4.0
+[output]
+end_time = 3.0
+)";
+  const SceneDef s = io::read_scene(text, "flight.toml");
+  EXPECT_EQ(io::physics_key(s), 0x62956753dcd784c0ull);
+  // Output settings never enter it.
+  const SceneDef t = io::read_scene(text, "flight.toml", {io::parse_override("output.vtk_every=2"),
+                                                           io::parse_override("output.dump_every=3")});
+  EXPECT_EQ(io::physics_key(t), io::physics_key(s));
 }
 
 TEST(SceneFile, ExampleScenesAllRead) {

@@ -191,12 +191,13 @@ void check_runnable(const SceneDef& scene, const SceneSetup& setup, const std::s
   const double step = setup.dt / setup.unit_time;  // t*
   const std::pair<const char*, double> cadences[] = {{"output.timeseries_every", scene.output.timeseries_every},
                                                      {"output.checkpoint_every", scene.output.checkpoint_every},
-                                                     {"output.dump_every", scene.output.dump_every}};
+                                                     {"output.dump_every", scene.output.dump_every},
+                                                     {"output.vtk_every", scene.output.vtk_every}};
   for (const auto& [key, every] : cadences)
     if (every > 0 && every < step) {
       std::ostringstream msg;
       msg << "value " << every << " t* is shorter than one time step of this scene (" << step
-          << " t*); use at least one step (0 switches checkpoints and dumps off)";
+          << " t*); use at least one step (0 switches checkpoints, dumps and VTK frames off)";
       throw ConfigError(source, key, msg.str());
     }
   if (!scene.avalanche) check_explicit_discs(scene, setup, source);

@@ -7,6 +7,7 @@
 
 #include "runout/measure.hpp"
 #include "runout/render/colormap.hpp"
+#include "runout/render/vector.hpp"
 
 namespace runout::render {
 
@@ -233,9 +234,34 @@ std::vector<std::pair<Rgba, std::string>> FrameMaker::legend_entries() const {
   return entries;
 }
 
-void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
+namespace {
+
+// Overlays on a PNG: blended on the CPU onto the OpenGL frame, text through FreeType.
+class ImageCanvas : public Canvas {
+ public:
+  ImageCanvas(Image& image, TextRenderer& text) : image_(image), text_(text) {}
+  void rect(int x0, int y0, int x1, int y1, Rgba c) override { image_.fill_rect(x0, y0, x1, y1, c); }
+  void disc(double cx, double cy, double r, Rgba c) override {
+    // Coverage from the distance to the edge, as the disc shader has it.
+    for (int py = static_cast<int>(std::floor(cy - r - 1)); py <= static_cast<int>(std::ceil(cy + r + 1)); ++py)
+      for (int px = static_cast<int>(std::floor(cx - r - 1)); px <= static_cast<int>(std::ceil(cx + r + 1)); ++px)
+        if (px >= 0 && py >= 0 && px < image_.width && py < image_.height)
+          image_.blend(px, py, c, std::clamp(r - std::hypot(px + 0.5 - cx, py + 0.5 - cy) + 0.5, 0.0, 1.0));
+  }
+  void text(int x, int y, std::string_view utf8, int pixel_size, Rgba c) override {
+    text_.draw(image_, x, y, utf8, pixel_size, c);
+  }
+
+ private:
+  Image& image_;
+  TextRenderer& text_;
+};
+
+}  // namespace
+
+void FrameMaker::draw_overlays(Canvas& canvas, const FramePlan& plan) {
   const double t_star = plan.t_star;
-  const int W = img.width, H = img.height;
+  const int W = options_.width, H = options_.height;
   const int fs = std::max(10, static_cast<int>(std::lround(H / 36.0)));  // font pixel size
   const int pad = std::max(4, fs / 2);
   const int line = std::max(1, fs / 9);
@@ -246,8 +272,8 @@ void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
   char stamp[64];
   std::snprintf(stamp, sizeof stamp, "t* = %.1f", t_star);
   const int stamp_w = text_.width(stamp, fs);
-  img.fill_rect(pad / 2, pad / 2, pad + stamp_w + pad / 2, pad + asc + fs / 3, panel);
-  text_.draw(img, pad, pad + asc, stamp, fs, ink);
+  canvas.rect(pad / 2, pad / 2, pad + stamp_w + pad / 2, pad + asc + fs / 3, panel);
+  canvas.text(pad, pad + asc, stamp, fs, ink);
 
   // Scale bar in units of D, bottom left: about an eighth of the width.
   const double D = setup_.large_diameter;
@@ -256,11 +282,11 @@ void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
   const int bar = static_cast<int>(std::lround(n_D * px_per_D));
   const std::string label = format_number(n_D) + " D";
   const int bx = pad, by = H - pad - line;
-  img.fill_rect(pad / 2, by - asc - fs / 2 - line, bx + std::max(bar, text_.width(label, fs)) + pad / 2, H - pad / 2, panel);
-  img.fill_rect(bx, by, bx + bar, by + line + 1, ink);
-  img.fill_rect(bx, by - fs / 3, bx + line + 1, by + line + 1, ink);
-  img.fill_rect(bx + bar - line - 1, by - fs / 3, bx + bar, by + line + 1, ink);
-  text_.draw(img, bx, by - fs / 3 - line - 1, label, fs, ink);
+  canvas.rect(pad / 2, by - asc - fs / 2 - line, bx + std::max(bar, text_.width(label, fs)) + pad / 2, H - pad / 2, panel);
+  canvas.rect(bx, by, bx + bar, by + line + 1, ink);
+  canvas.rect(bx, by - fs / 3, bx + line + 1, by + line + 1, ink);
+  canvas.rect(bx + bar - line - 1, by - fs / 3, bx + bar, by + line + 1, ink);
+  canvas.text(bx, by - fs / 3 - line - 1, label, fs, ink);
 
   // Legend or colour bar, top right.
   if (options_.color == ColorMode::spin || options_.color == ColorMode::speed) {
@@ -270,33 +296,30 @@ void FrameMaker::draw_overlays(Image& img, const FramePlan& plan) {
     const std::string title = spin ? "ω √(d/g)" : "|v| / √(g d)";
     const double lo = spin ? -options_.spin_limit : 0.0, hi = spin ? options_.spin_limit : speed_limit_;
     const int y_title = pad + asc, y_bar = y_title + fs / 3, y_labels = y_bar + bh + asc + 2;
-    img.fill_rect(x0 - pad / 2, pad / 2, W - pad / 2, y_labels + fs / 3, panel);
-    text_.draw(img, x0 + (bw - text_.width(title, fs)) / 2, y_title, title, fs, ink);
+    canvas.rect(x0 - pad / 2, pad / 2, W - pad / 2, y_labels + fs / 3, panel);
+    canvas.text(x0 + (bw - text_.width(title, fs)) / 2, y_title, title, fs, ink);
     for (int x = 0; x < bw; ++x) {
       const double t = (x + 0.5) / bw;
       const Rgba c = spin ? diverging(2 * t - 1) : viridis(t);
-      img.fill_rect(x0 + x, y_bar, x0 + x + 1, y_bar + bh, c);
+      canvas.rect(x0 + x, y_bar, x0 + x + 1, y_bar + bh, c);
     }
     // End labels inside the bar's span; a true minus sign.
     const std::string l0 = (lo < 0 ? "\u2212" : "") + format_number(std::abs(lo)), l1 = format_number(hi);
-    text_.draw(img, x0, y_labels, l0, fs, ink);
-    text_.draw(img, x1 - text_.width(l1, fs), y_labels, l1, fs, ink);
-    if (spin) text_.draw(img, x0 + bw / 2 - text_.width("0", fs) / 2, y_labels, "0", fs, ink);
+    canvas.text(x0, y_labels, l0, fs, ink);
+    canvas.text(x1 - text_.width(l1, fs), y_labels, l1, fs, ink);
+    if (spin) canvas.text(x0 + bw / 2 - text_.width("0", fs) / 2, y_labels, "0", fs, ink);
   } else {
     const auto entries = legend_entries();
     int widest = 0;
     for (const auto& e : entries) widest = std::max(widest, text_.width(e.second, fs));
     const int row = fs + fs / 3, sw = fs;  // swatch size
     const int x0 = W - pad - widest - sw - pad / 2;
-    img.fill_rect(x0 - pad / 2, pad / 2, W - pad / 2, pad + row * static_cast<int>(entries.size()), panel);
+    canvas.rect(x0 - pad / 2, pad / 2, W - pad / 2, pad + row * static_cast<int>(entries.size()), panel);
     for (std::size_t k = 0; k < entries.size(); ++k) {
       const int y = pad + static_cast<int>(k) * row;
-      // A small anti-aliased disc as the swatch.
-      const double cx = x0 + sw / 2.0, cy = y + sw / 2.0, r = sw * 0.42;
-      for (int py = y; py < y + sw; ++py)
-        for (int px = x0; px < x0 + sw; ++px)
-          img.blend(px, py, entries[k].first, std::clamp(r - std::hypot(px + 0.5 - cx, py + 0.5 - cy) + 0.5, 0.0, 1.0));
-      text_.draw(img, x0 + sw + pad / 2, y + asc - (asc - sw) / 2 - 1, entries[k].second, fs, ink);
+      // A small disc as the swatch.
+      canvas.disc(x0 + sw / 2.0, y + sw / 2.0, sw * 0.42, entries[k].first);
+      canvas.text(x0 + sw + pad / 2, y + asc - (asc - sw) / 2 - 1, entries[k].second, fs, ink);
     }
   }
 }
@@ -314,7 +337,7 @@ FramePlan FrameMaker::plan(const World& world, double t_star) {
   return plan;
 }
 
-Image FrameMaker::draw(const FramePlan& plan) {
+DrawStyle FrameMaker::style(const FramePlan& plan) const {
   DrawStyle style;
   if (options_.transparent) style.background.a = 0;
   // Outlines and spokes scale with the drawn size of a small disc.
@@ -322,9 +345,22 @@ Image FrameMaker::draw(const FramePlan& plan) {
   style.outline_px = options_.outlines ? std::clamp(0.12 * small_px, 0.6, 3.0) : 0.0;
   style.spokes = options_.spokes;
   style.wall_half_width_px = std::max(1.0, options_.height / 480.0);
-  Image img = gl_.draw(plan.view, plan.discs, plan.walls, style);
-  if (options_.overlays) draw_overlays(img, plan);
+  return style;
+}
+
+Image FrameMaker::draw(const FramePlan& plan) {
+  Image img = gl_.draw(plan.view, plan.discs, plan.walls, style(plan));
+  if (options_.overlays) {
+    ImageCanvas canvas(img, text_);
+    draw_overlays(canvas, plan);
+  }
   return img;
+}
+
+std::string FrameMaker::draw_vector(const FramePlan& plan, PictureFormat format) {
+  return encode_vector(format, options_.width, options_.height, plan, style(plan), [&](Canvas& canvas) {
+    if (options_.overlays) draw_overlays(canvas, plan);
+  });
 }
 
 }  // namespace runout::render

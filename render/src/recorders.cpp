@@ -42,15 +42,21 @@ void MovieRecorder::finish() {
   if (video_) video_->finish();
 }
 
-std::string snapshot_name(double t_star) {
+std::string snapshot_name(double t_star, PictureFormat format) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "snapshot_t%g.png", t_star);
+  std::snprintf(buf, sizeof buf, "snapshot_t%g.%s", t_star, extension(format));
   return buf;
 }
 
+void write_picture(const std::string& path, FrameMaker& maker, const World& world, double t_star,
+                   PictureFormat format) {
+  if (format == PictureFormat::png) write_png(path, maker.make(world, t_star), maker.options().transparent);
+  else io::write_file_atomically(path, maker.make_vector(world, t_star, format));
+}
+
 SnapshotWriter::SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                               std::string dir, std::vector<double> times)
-    : maker_(frame, scene, setup), dir_(std::move(dir)), times_(std::move(times)) {
+                               std::string dir, std::vector<double> times, PictureFormat format)
+    : maker_(frame, scene, setup), dir_(std::move(dir)), times_(std::move(times)), format_(format) {
   io::make_directories(dir_);
 }
 
@@ -59,8 +65,8 @@ void SnapshotWriter::observe(const World& world, double t_star) {
   double requested = t_star, best = std::numeric_limits<double>::infinity();
   for (double t : times_)
     if (std::abs(t - t_star) < best) { best = std::abs(t - t_star); requested = t; }
-  const std::string path = dir_ + "/" + snapshot_name(requested);
-  write_png(path, maker_.make(world, t_star), maker_.options().transparent);
+  const std::string path = dir_ + "/" + snapshot_name(requested, format_);
+  write_picture(path, maker_, world, t_star, format_);
   written_.push_back(path);
 }
 

@@ -124,6 +124,7 @@ struct OutputDef {
   double timeseries_every = 0.5;  // t*
   double checkpoint_every = 50.0; // t*; 0 disables periodic checkpoints
   double dump_every = 0.0;        // t*; 0 disables LAMMPS dump frames
+  double vtk_every = 0.0;         // t*; 0 disables VTK frames (ParaView)
   double end_time = 0.0;          // t*; > 0 stops the run there even if not at rest
   double basal_layer_packing = 0.7;  // C in H_layer = pi sum r^2 / (L C) (SPEC §6, eq. 4.9)
 };

@@ -1,6 +1,11 @@
 #include "runout/io/outputs.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -183,8 +188,10 @@ std::string lammps_dump_frame(const World& world, double t_star) {
   std::string out;
   out.reserve(p.size() * 96 + 256);
   char line[256];
-  std::snprintf(line, sizeof line, "ITEM: TIMESTEP\n%lld\nITEM: TIME\n%.9g\n",
-                static_cast<long long>(world.step_count()), t_star);
+  // TIME before TIMESTEP, as LAMMPS's own `dump_modify time yes` writes it: its read_dump
+  // refuses the other order ("Dump file is incorrectly formatted"); OVITO and ASE read either.
+  std::snprintf(line, sizeof line, "ITEM: TIME\n%.9g\nITEM: TIMESTEP\n%lld\n", t_star,
+                static_cast<long long>(world.step_count()));
   out += line;
   std::snprintf(line, sizeof line, "ITEM: NUMBER OF ATOMS\n%zu\n", p.size());
   out += line;
@@ -193,14 +200,157 @@ std::string lammps_dump_frame(const World& world, double t_star) {
   std::snprintf(line, sizeof line, "ITEM: BOX BOUNDS ff ff pp\n%.9g %.9g\n%.9g %.9g\n%.9g %.9g\n",
                 xlo, xhi, ylo, yhi, -rmax, rmax);
   out += line;
-  out += "ITEM: ATOMS id type x y radius vx vy omegaz\n";
+  // z and vz (always 0) are there for ASE: its lammps-dump-text reader takes positions and
+  // velocities only as whole x y z and vx vy vz triples, and without z it builds no atoms at all
+  // (LAMMPS's read_dump of a 2D box reads x y vx vy and skips the other columns).
+  out += "ITEM: ATOMS id type x y z radius vx vy vz omegaz\n";
   for (std::size_t k = 0; k < p.size(); ++k) {
-    std::snprintf(line, sizeof line, "%lld %d %.9g %.9g %.9g %.9g %.9g %.9g\n",
+    std::snprintf(line, sizeof line, "%lld %d %.9g %.9g 0 %.9g %.9g %.9g 0 %.9g\n",
                   static_cast<long long>(p.id[k]), p.species[k] + 1, p.x[k], p.y[k], p.radius[k],
                   p.vx[k], p.vy[k], p.omega[k]);
     out += line;
   }
   return out;
+}
+
+}  // namespace runout::io
+
+namespace runout::io {
+
+namespace {
+
+// The appended block of a VTK XML file: each array a UInt64 byte count and its values, little
+// endian whatever the machine (the header says byte_order="LittleEndian").
+class AppendedData {
+ public:
+  // Adds an array and returns its offset, counted from the first byte after the '_' marker.
+  template <class T>
+  std::size_t add(const std::vector<T>& values) {
+    const std::size_t offset = bytes_.size();
+    put(static_cast<std::uint64_t>(values.size() * sizeof(T)));
+    for (const T& v : values) put(v);
+    return offset;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  template <class T>
+  void put(T v) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &v, sizeof(T));
+    if constexpr (std::endian::native == std::endian::big) std::reverse(raw, raw + sizeof(T));
+    bytes_.append(raw, sizeof(T));
+  }
+  std::string bytes_;
+};
+
+std::string nine_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);  // as the dump's TIME: 9 significant digits
+  return buf;
+}
+
+}  // namespace
+
+std::string vtk_polydata_frame(const World& world, double t_star, const std::vector<char>& basal_layer) {
+  const auto& p = world.particles();
+  const std::size_t n = p.size();
+  std::vector<const Segment*> walls;
+  for (const auto& s : world.segments())
+    if (s.active) walls.push_back(&s);  // a released gate is no longer drawn, nor exported
+  const std::size_t points = n + 2 * walls.size();
+
+  std::vector<double> xyz, radius(points, 0.0), velocity(3 * points, 0.0), spin(points, 0.0);
+  std::vector<std::int32_t> species(points, -1);
+  std::vector<std::uint8_t> basal(points, 0);
+  std::vector<std::int64_t> id(points, -1);
+  xyz.reserve(3 * points);
+  for (std::size_t k = 0; k < n; ++k) {
+    xyz.insert(xyz.end(), {p.x[k], p.y[k], 0.0});
+    radius[k] = p.radius[k];
+    velocity[3 * k] = p.vx[k];
+    velocity[3 * k + 1] = p.vy[k];
+    spin[k] = p.omega[k];
+    species[k] = p.species[k];
+    basal[k] = k < basal_layer.size() && basal_layer[k] ? 1 : 0;
+    id[k] = p.id[k];
+  }
+  for (const Segment* s : walls) xyz.insert(xyz.end(), {s->a.x(), s->a.y(), 0.0, s->b.x(), s->b.y(), 0.0});
+  // Cells: a vertex per disc (so ParaView shows the discs as points without a filter) and a
+  // line per wall; offsets are each cell's end in the connectivity list.
+  std::vector<std::int64_t> vert_conn(n), vert_offsets(n), line_conn(2 * walls.size()), line_offsets(walls.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    vert_conn[k] = static_cast<std::int64_t>(k);
+    vert_offsets[k] = static_cast<std::int64_t>(k + 1);
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    line_conn[2 * w] = static_cast<std::int64_t>(n + 2 * w);
+    line_conn[2 * w + 1] = static_cast<std::int64_t>(n + 2 * w + 1);
+    line_offsets[w] = static_cast<std::int64_t>(2 * (w + 1));
+  }
+
+  AppendedData data;
+  auto array = [&](const char* type, const char* name, int components, std::size_t offset) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "        <DataArray type=\"%s\" Name=\"%s\" NumberOfComponents=\"%d\" format=\"appended\" "
+                  "offset=\"%zu\"/>\n",
+                  type, name, components, offset);
+    return std::string(buf);
+  };
+  std::string xml;
+  xml += "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += "  <PolyData>\n    <FieldData>\n";
+  xml += "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">" +
+         nine_digits(t_star) + "</DataArray>\n";
+  xml += "      <DataArray type=\"Int64\" Name=\"step\" NumberOfTuples=\"1\" format=\"ascii\">" +
+         std::to_string(world.step_count()) + "</DataArray>\n";
+  xml += "    </FieldData>\n";
+  xml += "    <Piece NumberOfPoints=\"" + std::to_string(points) + "\" NumberOfVerts=\"" + std::to_string(n) +
+         "\" NumberOfLines=\"" + std::to_string(walls.size()) + "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
+  xml += "      <PointData Scalars=\"species\" Vectors=\"velocity\">\n";
+  xml += array("Float64", "radius", 1, data.add(radius));
+  xml += array("Float64", "velocity", 3, data.add(velocity));
+  xml += array("Float64", "spin", 1, data.add(spin));
+  xml += array("Int32", "species", 1, data.add(species));
+  xml += array("UInt8", "basal_layer", 1, data.add(basal));
+  xml += array("Int64", "id", 1, data.add(id));
+  xml += "      </PointData>\n      <Points>\n";
+  xml += array("Float64", "Points", 3, data.add(xyz));
+  xml += "      </Points>\n      <Verts>\n";
+  xml += array("Int64", "connectivity", 1, data.add(vert_conn));
+  xml += array("Int64", "offsets", 1, data.add(vert_offsets));
+  xml += "      </Verts>\n      <Lines>\n";
+  xml += array("Int64", "connectivity", 1, data.add(line_conn));
+  xml += array("Int64", "offsets", 1, data.add(line_offsets));
+  xml += "      </Lines>\n    </Piece>\n  </PolyData>\n";
+  xml += "  <AppendedData encoding=\"raw\">\n   _";
+  xml += data.bytes();
+  xml += "\n  </AppendedData>\n</VTKFile>\n";
+  return xml;
+}
+
+std::optional<double> vtk_frame_time(std::string_view head) {
+  const std::string_view key = "Name=\"TimeValue\"";
+  const auto at = head.find(key);
+  if (at == std::string_view::npos) return std::nullopt;
+  const auto open = head.find('>', at), close = head.find('<', at);
+  if (open == std::string_view::npos || close == std::string_view::npos || close <= open) return std::nullopt;
+  const std::string text(head.substr(open + 1, close - open - 1));
+  char* end = nullptr;
+  const double t = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(t)) return std::nullopt;
+  return t;
+}
+
+std::string vtk_collection(const std::vector<VtkCollectionEntry>& frames) {
+  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                    "  <Collection>\n";
+  for (const auto& f : frames)
+    xml += "    <DataSet timestep=\"" + nine_digits(f.t_star) + "\" group=\"\" part=\"0\" file=\"" + f.file + "\"/>\n";
+  xml += "  </Collection>\n</VTKFile>\n";
+  return xml;
 }
 
 }  // namespace runout::io

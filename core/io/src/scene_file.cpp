@@ -389,7 +389,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
   }
   if (auto t = top.subtable("output")) {
     TableReader r(*t, "output", source);
-    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "end_time",
+    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "vtk_every", "end_time",
              "basal_layer_packing"}, "");
     if (const toml::array* list = r.array("series")) {
       s.output.series = {false, false, false, false, false};
@@ -410,6 +410,7 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
     r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
     r.number("checkpoint_every", s.output.checkpoint_every, closed(0, 1e7));
     r.number("dump_every", s.output.dump_every, closed(0, 1e7));
+    r.number("vtk_every", s.output.vtk_every, closed(0, 1e7));
     r.number("end_time", s.output.end_time, closed(0, 1e7));
     r.number("basal_layer_packing", s.output.basal_layer_packing, {0, 1, true, false});
     r.finish();
@@ -597,15 +598,15 @@ toml::table physics_tables(const SceneDef& s, bool include_rest) {
                                       {"timeseries_every", s.output.timeseries_every},
                                       {"checkpoint_every", s.output.checkpoint_every},
                                       {"dump_every", s.output.dump_every},
+                                      {"vtk_every", s.output.vtk_every},
                                       {"end_time", s.output.end_time},
                                       {"basal_layer_packing", s.output.basal_layer_packing}});
   }
   return root;
 }
 
-}  // namespace
-
-std::string write_scene(const SceneDef& s) {
+// The whole scene as a table: what scene.resolved.toml says and the physics key is made of.
+toml::table scene_table(const SceneDef& s) {
   toml::table root = physics_tables(s, true);
   if (!s.walls.empty()) {
     toml::array walls;
@@ -627,6 +628,10 @@ std::string write_scene(const SceneDef& s) {
                                   {"diameter", p.diameter}});
     root.insert("particles", parts);
   }
+  return root;
+}
+
+std::string format_scene(const toml::table& root) {
   std::ostringstream out;
   out << "# Every value this run used, defaults included (runout scene.resolved.toml)\n";
   out << toml::toml_formatter(root, toml::toml_formatter::default_flags &
@@ -635,12 +640,21 @@ std::string write_scene(const SceneDef& s) {
   return out.str();
 }
 
+}  // namespace
+
+std::string write_scene(const SceneDef& s) { return format_scene(scene_table(s)); }
+
 std::uint64_t physics_key(const SceneDef& scene) {
   SceneDef s = scene;
   s.rest = RestDef{};
   s.output = OutputDef{};
   s.name.clear();
-  return fnv1a64(write_scene(s));
+  toml::table root = scene_table(s);
+  // The key is the text of the scene with its output settings at their defaults, so an output
+  // key added later would change every key and orphan the checkpoints written before it (a run
+  // could no longer be resumed or drawn). Keys added to [output] since are left out of it.
+  for (const char* added : {"vtk_every"}) root["output"].as_table()->erase(added);
+  return fnv1a64(format_scene(root));
 }
 
 std::string pile_key_text(const SceneDef& s) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "runout/render/canvas.hpp"
 #include "runout/render/gl_renderer.hpp"
 #include "runout/render/text.hpp"
 #include "runout/setup.hpp"
@@ -57,6 +58,12 @@ class FrameMaker {
   FramePlan plan(const World& world, double t_star);
   Image draw(const FramePlan& plan);
   Image make(const World& world, double t_star) { return draw(plan(world, t_star)); }
+  // The same picture as a PDF (cairo) or SVG file's bytes: the same discs, colours, walls and
+  // overlays, drawn as shapes and text (vector.cpp).
+  std::string draw_vector(const FramePlan& plan, PictureFormat format);
+  std::string make_vector(const World& world, double t_star, PictureFormat format) {
+    return draw_vector(plan(world, t_star), format);
+  }
   const FrameOptions& options() const { return options_; }
   // What the legend says (species or basal-layer mode): each entry's colour and label; the same
   // entries whether overlays are drawn or a figure draws its own legend (runout plot).
@@ -66,7 +73,8 @@ class FrameMaker {
  private:
   void update_camera(const World& world, double t_star);
   void colour_discs(const World& world);
-  void draw_overlays(Image& image, const FramePlan& plan);
+  DrawStyle style(const FramePlan& plan) const;
+  void draw_overlays(Canvas& canvas, const FramePlan& plan);
   std::string species_label(int species) const;
 
   FrameOptions options_;

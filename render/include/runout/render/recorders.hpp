@@ -38,12 +38,12 @@ class MovieRecorder : public Observer {
   std::unique_ptr<IdleWorker<FramePlan>> worker_;  // last: stops before the members it uses
 };
 
-// Writes DIR/snapshot_t<T>.png for each requested T (the frame is the step nearest T; its stamp
-// shows the actual t*).
+// Writes DIR/snapshot_t<T>.png (or .pdf, .svg) for each requested T (the frame is the step
+// nearest T; its stamp shows the actual t*).
 class SnapshotWriter : public Observer {
  public:
   SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                 std::string dir, std::vector<double> times);
+                 std::string dir, std::vector<double> times, PictureFormat format = PictureFormat::png);
   void observe(const World& world, double t_star) override;
   std::vector<std::string> written() const { return written_; }
 
@@ -51,9 +51,14 @@ class SnapshotWriter : public Observer {
   FrameMaker maker_;
   std::string dir_;
   std::vector<double> times_;
+  PictureFormat format_;
   std::vector<std::string> written_;
 };
 
-std::string snapshot_name(double t_star);  // "snapshot_t40.png", "snapshot_t2.5.png"
+// "snapshot_t40.png", "snapshot_t2.5.pdf"
+std::string snapshot_name(double t_star, PictureFormat format = PictureFormat::png);
+// A frame written in `format`: a PNG (alpha kept if the frame is transparent), or a PDF or SVG.
+void write_picture(const std::string& path, FrameMaker& maker, const World& world, double t_star,
+                   PictureFormat format);
 
 }  // namespace runout::render
