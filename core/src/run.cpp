@@ -18,6 +18,7 @@ std::string encode_run_state(const RunState& s) {
   w.put(s.below_since); w.put(s.peak_ek); w.put(s.t_star_peak_ek); w.put(s.next_sample);
   w.put(s.wall_seconds);
   w.put(s.energy_total0); w.put(s.committed0); w.put(s.dissipated_normal0); w.put(s.dissipated_friction0);
+  w.put(s.dissipated_rolling0);
   w.put(s.worst_residual);
   w.put(s.max_overlap);
   w.put_vector(s.series);
@@ -46,6 +47,7 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   s.wall_seconds = r.get<double>();
   s.energy_total0 = r.get<double>(); s.committed0 = r.get<double>();
   s.dissipated_normal0 = r.get<double>(); s.dissipated_friction0 = r.get<double>();
+  s.dissipated_rolling0 = r.get<double>();
   s.worst_residual = r.get<double>();
   s.max_overlap = r.get<double>();
   s.series = r.get_vector<TimeseriesRow>();
@@ -73,7 +75,7 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   for (double v : {s.ep0, s.energy_reference_y, s.com_release.x(), s.com_release.y(),
                    s.top_release.top_x, s.top_release.top_y, s.below_since, s.peak_ek,
                    s.t_star_peak_ek, s.next_sample, s.wall_seconds, s.energy_total0, s.committed0,
-                   s.dissipated_normal0, s.dissipated_friction0, s.t_star_rest})
+                   s.dissipated_normal0, s.dissipated_friction0, s.dissipated_rolling0, s.t_star_rest})
     if (!std::isfinite(v)) throw IoError(name + ": checkpoint is corrupt (run state)");
   if (s.ep0 < 0) throw IoError(name + ": checkpoint is corrupt (run state)");
   return s;
@@ -131,6 +133,7 @@ AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup
   state_.committed0 = e.committed_normal;
   state_.dissipated_normal0 = world.dissipation().normal;
   state_.dissipated_friction0 = world.dissipation().friction;
+  state_.dissipated_rolling0 = world.dissipation().rolling;
 }
 
 AvalancheRun::AvalancheRun(World& world, const SceneDef& scene, const SceneSetup& setup,
@@ -180,7 +183,7 @@ TimeseriesRow AvalancheRun::sample() const {
   const SeriesSelection& want = scene_.output.series;
   row.small_mean_height = row.large_mean_height = row.basal_spin = row.front_x = row.max_overlap = none;
   row.ep_over_ep0 = row.elastic_over_ep0 = row.dissipated_normal_over_ep0 = none;
-  row.dissipated_friction_over_ep0 = row.residual_over_ep0 = none;
+  row.dissipated_friction_over_ep0 = row.dissipated_rolling_over_ep0 = row.residual_over_ep0 = none;
   if (want.segregation) {
     const SegregationHeights h = mean_heights(p, world_.segments(), setup_.roles);
     row.small_mean_height = h.small / d;
@@ -194,12 +197,14 @@ TimeseriesRow AvalancheRun::sample() const {
     const Dissipation& lost = world_.dissipation();
     const double normal = lost.normal - state_.dissipated_normal0 + e.committed_normal - state_.committed0;
     const double friction = lost.friction - state_.dissipated_friction0;
+    const double rolling = lost.rolling - state_.dissipated_rolling0;
     row.ep_over_ep0 = e.potential / ep0;
     row.elastic_over_ep0 = e.elastic / ep0;
     row.dissipated_normal_over_ep0 = normal / ep0;
     row.dissipated_friction_over_ep0 = friction / ep0;
+    row.dissipated_rolling_over_ep0 = rolling / ep0;
     row.residual_over_ep0 = (state_.energy_total0 - (e.translational + e.rotational + e.potential + e.elastic +
-                                                     normal + friction)) / ep0;
+                                                     normal + friction + rolling)) / ep0;
   }
   return row;
 }

@@ -26,11 +26,13 @@ struct TimeseriesRow {
   double basal_spin = 0;      // omega sqrt(d/g) of small discs touching the bed
   double front_x = 0;         // farthest disc edge, in d
   // Energy ledger since release, each over Ep0 (SPEC §8): E_total(0) = ep + ek + erot + elastic
-  // + dissipated_normal + dissipated_friction + residual; the residual is the integrator's error.
+  // + dissipated_normal + dissipated_friction + dissipated_rolling + residual; the residual is
+  // the integrator's error.
   double ep_over_ep0 = 0;
   double elastic_over_ep0 = 0;
   double dissipated_normal_over_ep0 = 0;
   double dissipated_friction_over_ep0 = 0;
+  double dissipated_rolling_over_ep0 = 0;  // rolling resistance (contact.rolling_model)
   double residual_over_ep0 = 0;
   double max_overlap = 0;  // largest overlap / smaller radius among touching disc pairs now
 };
@@ -99,7 +101,8 @@ struct RunState {
   bool series_ends_with_end_row = false;
   double wall_seconds = 0;  // spent before a resume
   // Ledger origin at release: total energy, committed hysteresis and dissipation counters.
-  double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0;
+  double energy_total0 = 0, committed0 = 0, dissipated_normal0 = 0, dissipated_friction0 = 0,
+         dissipated_rolling0 = 0;
   double worst_residual = 0;  // largest |residual| / Ep0 seen
   double max_overlap = 0;     // largest overlap / smaller radius seen in the samples
   // The discs when the mass first came to rest, kept only when the run goes on after that

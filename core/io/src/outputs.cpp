@@ -86,6 +86,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
                           {"elastic", number(e.elastic_over_ep0)},
                           {"dissipated_normal", number(e.dissipated_normal_over_ep0)},
                           {"dissipated_friction", number(e.dissipated_friction_over_ep0)},
+                          {"dissipated_rolling", number(e.dissipated_rolling_over_ep0)},
                           {"residual", number(e.residual_over_ep0)},
                           {"worst_residual", number(r.worst_energy_residual)}};
   j["wall_seconds"] = r.wall_seconds;
@@ -143,6 +144,7 @@ std::string timeseries_csv(const std::vector<TimeseriesRow>& rows, const SeriesS
       {"elastic_over_ep0", "%.9g", &TimeseriesRow::elastic_over_ep0, want.energy},
       {"dissipated_normal_over_ep0", "%.9g", &TimeseriesRow::dissipated_normal_over_ep0, want.energy},
       {"dissipated_friction_over_ep0", "%.9g", &TimeseriesRow::dissipated_friction_over_ep0, want.energy},
+      {"dissipated_rolling_over_ep0", "%.9g", &TimeseriesRow::dissipated_rolling_over_ep0, want.energy},
       {"residual_over_ep0", "%.3e", &TimeseriesRow::residual_over_ep0, want.energy},
       {"max_overlap", "%.4g", &TimeseriesRow::max_overlap, want.overlap},
   };
