@@ -15,6 +15,7 @@
 #include "runout/contact/hertz.hpp"
 #include "runout/contact/linear_dashpot.hpp"
 #include "runout/contact/mindlin.hpp"
+#include "runout/contact/rolling_sds.hpp"
 #include "runout/contact/walton_braun.hpp"
 
 namespace runout {
@@ -34,7 +35,7 @@ struct LawList {
 
 using NormalLaws = LawList<WaltonBraun, LinearDashpot, Hertz>;
 using TangentialLaws = LawList<CundallStrack, Mindlin>;
-using RollingLaws = LawList<NoRolling>;
+using RollingLaws = LawList<NoRolling, RollingSpringDashpot>;
 
 // The laws a scene chose (names checked by the scene reader against the lists above).
 struct ContactChoice {
