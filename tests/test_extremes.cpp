@@ -60,8 +60,12 @@ TEST(Extremes, StepBeyondTheStabilityLimitIsRefused) {
     EXPECT_NE(std::string(e.what()).find("integration.dt_fraction"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("stability"), std::string::npos) << e.what();
   }
-  // Just inside the limit the integration is still finite (a coarse but stable step).
-  EXPECT_TRUE(std::isfinite(restitution(0.2, 1.0, 0.3)));
+  // Just inside the limit the step is coarse but stable: ~1.5 rad of the pair's oscillation
+  // per step. The collision still returns within 30 % of e_n (0.249 measured), and a step
+  // four times smaller at least halves the error (the integrator converges).
+  const double coarse = restitution(0.2, 1.0, 0.3), finer = restitution(0.2, 1.0, 0.075);
+  EXPECT_NEAR(coarse, 0.2, 0.06);
+  EXPECT_LT(std::abs(finer - 0.2), 0.5 * std::abs(coarse - 0.2));
 }
 
 // A disc on a 30 degree incline with the given friction: its acceleration along the slope.
@@ -119,25 +123,23 @@ TEST(Extremes, SizeRatioTwentyPileSettlesAndFlows) {
   s.species = {{"large", 1.0, 0.1, 0.5}, {"small", 0.05, 0.1, 0.5}};
   s.avalanche = testing::short_avalanche(5.0, 3.0, 10.0, 10.0, 4);  // 2 large and 800 small discs
   s.preparation.settle_ek_threshold = 1e-5;
-  s.preparation.settle_max_time = 60.0;
+  s.preparation.settle_max_time = 250.0;
   s.output.end_time = 3.0;
   const SceneSetup setup = derive_setup(s);
   EXPECT_EQ(setup.counts[1], 800);
-  // Either a pile that settles and flows, or a clear error naming the cause and the knob.
-  try {
-    World w = build_settled_pile(s, setup, 1);
-    release(w, setup);
-    AvalancheRun run(w, s, setup);
-    const RunResult r = run.run();
-    EXPECT_NEAR(r.t_star_end, 3.0, 0.06);  // end_time is checked every 1/20 t* (run.cpp)
-    for (std::size_t k = 0; k < w.particles().size(); ++k) ASSERT_TRUE(std::isfinite(w.particles().x[k]));
-    EXPECT_GT(r.com_rest.x(), r.com_release.x());  // it moved down-slope
-  } catch (const NumericalError& e) {
-    const std::string what = e.what();
-    EXPECT_TRUE(what.find("preparation.") != std::string::npos || what.find("contact.") != std::string::npos)
-        << what;
-    GTEST_LOG_(INFO) << "D/d = 20 ends in a clear error: " << what;
-  }
+  // It settles and flows: the pile is at rest under the undamped law at release, every disc
+  // stays inside the walls, and the mass moves down-slope.
+  SettleReport report;
+  World w = build_settled_pile(s, setup, 1, {}, &report);
+  EXPECT_LT(report.ek_over_ep_undamped, s.preparation.settle_ek_threshold);
+  release(w, setup);
+  AvalancheRun run(w, s, setup);
+  const RunResult r = run.run();
+  EXPECT_NEAR(r.t_star_end, 3.0, 0.06);  // end_time is checked every 1/20 t* (run.cpp)
+  ASSERT_EQ(w.particles().size(), 802u);
+  w.check_escape(0.0);  // throws if a disc left the walls' box
+  // Down-slope by more than a small disc's diameter in 3 t*.
+  EXPECT_GT(r.com_rest.x() - r.com_release.x(), 0.05);
 }
 
 TEST(Extremes, DiscExactlyInTheInclineFloorCorner) {

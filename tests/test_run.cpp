@@ -108,7 +108,17 @@ TEST(Run, LedgerCannotStartAtAResume) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("output.series"), std::string::npos) << e.what();
   }
-  AvalancheRun resumed_bare(w, bare, setup, saved);  // the same selection resumes
+  // The same selection resumes, and to the same end as a run never stopped.
+  SceneDef longer = bare;
+  longer.output.end_time = 3.0;
+  AvalancheRun resumed_bare(w, longer, setup, saved);
+  const RunResult r = resumed_bare.run();
+  World u = build_explicit_world(longer, setup, 1);
+  AvalancheRun whole(u, longer, setup);
+  const RunResult ru = whole.run();
+  EXPECT_EQ(r.t_star_end, ru.t_star_end);
+  EXPECT_EQ(w.particles().x, u.particles().x);
+  EXPECT_EQ(w.particles().omega, u.particles().omega);
 }
 
 class Recorder : public Observer {
