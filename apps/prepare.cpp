@@ -38,7 +38,7 @@ std::string hex(std::uint64_t v) {
 
 std::uint64_t pile_key(const SceneDef& scene) {
   return io::fnv1a64(io::pile_key_text(scene) + "checkpoint-v" + std::to_string(kCheckpointVersion) +
-                     "physics-r" + std::to_string(kPhysicsRevision));
+                     "physics-" + kTrajectoryHash);
 }
 
 }  // namespace

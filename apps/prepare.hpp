@@ -12,9 +12,10 @@
 
 namespace runout::app {
 
-// Bumped whenever a change to the physics code changes trajectories, so a cached pile is never
-// one that this binary would not have settled itself.
-inline constexpr int kPhysicsRevision = 6;
+// The physics of this build, as the hash of a reference trajectory that tests/test_trajectory.cpp
+// checks (tests/golden/trajectory_hash.txt, read by CMake): a cached pile is never one that this
+// binary would not have settled itself.
+inline constexpr const char* kTrajectoryHash = RUNOUT_TRAJECTORY_HASH;
 
 // `path` empty: the embedded scene text, reported as `embedded_name` in errors.
 SceneDef load_scene(const std::string& path, const std::vector<std::string>& overrides,

@@ -1,0 +1,55 @@
+// The trajectory hash: a small thesis-like pile (test_helpers.hpp small_pile: D/d = 2, 30 large
+// discs' area) settled from its seed, released and run to t* = 2 with the default laws, at 1 and
+// 2 threads; every disc's position, velocity, spin and angle, bit for bit, hashed (FNV-1a).
+// The stored value (tests/golden/trajectory_hash.txt) is also the physics part of the pile
+// cache's key (apps/prepare.cpp): a change that moves any trajectory fails this test, and
+// regenerating the hash (RUNOUT_UPDATE_GOLDENS=1, on purpose, saying why in the commit)
+// retires every cached pile the old physics settled.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "runout/io/files.hpp"
+#include "runout/run.hpp"
+#include "runout/setup.hpp"
+#include "test_helpers.hpp"
+
+namespace runout {
+namespace {
+
+std::string trajectory_hash(int threads) {
+  SceneDef s = testing::small_pile();
+  s.output.end_time = 2.0;
+  const SceneSetup setup = derive_setup(s);
+  World w = build_settled_pile(s, setup, threads);
+  release(w, setup);
+  AvalancheRun run(w, s, setup);
+  run.run();
+  const Particles& p = w.particles();
+  std::uint64_t h = io::fnv1a64("");
+  for (const auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.angle})
+    h = io::fnv1a64(std::string_view(reinterpret_cast<const char*>(v->data()), v->size() * sizeof(double)), h);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+TEST(Trajectory, SmallPileHashIsTheStoredOneAtOneAndTwoThreads) {
+  const std::string path = std::string(RUNOUT_SOURCE_DIR) + "/tests/golden/trajectory_hash.txt";
+  const std::string one = trajectory_hash(1), two = trajectory_hash(2);
+  EXPECT_EQ(one, two) << "the trajectory depends on the thread count";
+  if (const char* u = std::getenv("RUNOUT_UPDATE_GOLDENS"); u && std::string(u) == "1") {
+    std::ofstream(path) << one << "\n";
+    GTEST_SKIP() << "wrote " << path;
+  }
+  std::ifstream in(path);
+  std::string stored;
+  ASSERT_TRUE(in >> stored) << path << " is missing (RUNOUT_UPDATE_GOLDENS=1 writes it)";
+  EXPECT_EQ(one, stored) << "the physics changed: if on purpose, regenerate " << path;
+}
+
+}  // namespace
+}  // namespace runout
