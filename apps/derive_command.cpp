@@ -66,7 +66,7 @@ int derive_command(const DeriveOptions& o) {
       row["m_star"] = c.reduced_mass;
       row["k_load"] = c.k_load;
       row["k_unload"] = c.k_unload;
-      row["k_tangential"] = c.k_tangential;
+      row["k_tangential"] = c.tangential_stiffness_for_dt;  // Mindlin: at the design overlap
       row["friction"] = c.friction;
       row["k_unload_over_m_star"] = c.k_unload / c.reduced_mass;  // s^-2, SPEC §3's check column
       // Dimensionless: k_U r* / (m* g) = (alphadot0 f / alphamax)^2.
