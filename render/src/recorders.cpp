@@ -10,10 +10,10 @@
 namespace runout::render {
 
 MovieRecorder::MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                             const std::string& video_path, const VideoOptions& video,
+                             const World& first, const std::string& video_path, const VideoOptions& video,
                              const std::string& png_dir)
-    : maker_(frame, scene, setup), png_dir_(png_dir), keep_alpha_(frame.transparent) {
-  if (!video_path.empty()) video_.emplace(video_path, frame.width, frame.height, video);
+    : maker_(frame, scene, setup, &first), png_dir_(png_dir), keep_alpha_(frame.transparent) {
+  if (!video_path.empty()) video_.emplace(video_path, maker_.options().width, maker_.options().height, video);
   if (!png_dir_.empty()) io::make_directories(png_dir_);
   worker_ = std::make_unique<IdleWorker<FramePlan>>(4, [this](FramePlan& plan) { draw(plan); });
 }
@@ -55,8 +55,9 @@ void write_picture(const std::string& path, FrameMaker& maker, const World& worl
 }
 
 SnapshotWriter::SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                               std::string dir, std::vector<double> times, PictureFormat format)
-    : maker_(frame, scene, setup), dir_(std::move(dir)), times_(std::move(times)), format_(format) {
+                               const World& first, std::string dir, std::vector<double> times,
+                               PictureFormat format)
+    : maker_(frame, scene, setup, &first), dir_(std::move(dir)), times_(std::move(times)), format_(format) {
   io::make_directories(dir_);
 }
 
