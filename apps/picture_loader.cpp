@@ -69,9 +69,10 @@ const PictureApi& pictures() {
 
 int render_command(const RenderOptions& o) { return pictures().render(o); }
 int compare_command(const CompareOptions& o) { return pictures().compare(o); }
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const SceneDef& scene,
-                                                const SceneSetup& setup, const std::string& out_dir) {
-  return pictures().attach(o, run, scene, setup, out_dir);
+std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
+                                                const SceneDef& scene, const SceneSetup& setup,
+                                                const std::string& out_dir) {
+  return pictures().attach(o, run, world, scene, setup, out_dir);
 }
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between) {

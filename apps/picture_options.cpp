@@ -29,7 +29,7 @@ void add_picture_options(CLI::App* cmd, PictureOptions& o, bool with_movie) {
   cmd->add_option("--camera", o.camera, "whole | front | deposit | window")
       ->check(CLI::IsMember({"whole", "front", "deposit", "window"}));
   cmd->add_option("--window", o.window, "x0,y0,x1,y1 in metres, for --camera window");
-  cmd->add_option("--size", o.size, "frame size WxH in pixels (odd sizes are rounded up)");
+  cmd->add_option("--size", o.size, "frame size WxH in pixels (odd sizes are rounded up; H = 0: from the camera)");
   cmd->add_option("--front-width", o.front_width, "front camera: window width in D")->check(real_in(1.0, 1e5));
   cmd->add_option("--spin-limit", o.spin_limit, "spin colours saturate at +-this omega sqrt(d/g)")
       ->check(real_in(1e-6, 1e6));
@@ -46,8 +46,9 @@ FrameSize parse_frame_size(const std::string& text) {
   int w = 0, h = 0;
   char x = 0;
   std::istringstream in(text);
-  if (!(in >> w >> x >> h) || x != 'x' || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
-    throw UsageError("--size: \"" + text + "\" is not WxH with 16 <= W, H <= 8192");
+  if (!(in >> w >> x >> h) || x != 'x' || w < 16 || (h < 16 && h != 0) || w > 8192 || h > 8192 || !in.eof())
+    throw UsageError("--size: \"" + text + "\" is not WxH with 16 <= W <= 8192 and 16 <= H <= 8192, or H = 0 "
+                     "(the height from the camera's aspect)");
   return {w, h};
 }
 

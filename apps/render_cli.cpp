@@ -28,7 +28,7 @@ namespace {
 
 render::FrameOptions frame_options(const PictureOptions& o) {
   render::FrameOptions f;
-  auto [w, h] = parse_frame_size(o.size);
+  auto [w, h] = parse_frame_size(o.size);  // h = 0: from the camera (FrameMaker)
   if (w % 2 || h % 2) {
     std::fprintf(stderr, "runout: note: --size %dx%d rounded up to %dx%d (video needs even sizes)\n", w, h,
                  w + w % 2, h + h % 2);
@@ -56,8 +56,8 @@ render::FrameOptions frame_options(const PictureOptions& o) {
 
 class Session : public PictureSession {
  public:
-  Session(const PictureOptions& o, AvalancheRun& run, const SceneDef& scene, const SceneSetup& setup,
-          const std::string& out_dir) {
+  Session(const PictureOptions& o, AvalancheRun& run, const World& world, const SceneDef& scene,
+          const SceneSetup& setup, const std::string& out_dir) {
     const render::FrameOptions frame = frame_options(o);
     if (!o.movie.empty() || !o.frames_dir.empty()) {
       render::VideoOptions video;
@@ -65,13 +65,13 @@ class Session : public PictureSession {
       video.crf = o.crf;
       video.preset = o.preset;
       video.lossless = o.lossless;
-      movie_.emplace(frame, scene, setup, o.movie, video, o.frames_dir);
+      movie_.emplace(frame, scene, setup, world, o.movie, video, o.frames_dir);
       run.add_observer(*movie_, {o.frame_every, 0.0, {}});
       movie_path_ = o.movie;
     }
     if (!o.snapshots.empty()) {
       const auto times = parse_times(o.snapshots);
-      snapshots_.emplace(frame, scene, setup, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times,
+      snapshots_.emplace(frame, scene, setup, world, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times,
                          render::parse_picture_format(o.snapshot_format.empty() ? "png" : o.snapshot_format));
       run.add_observer(*snapshots_, {0.0, 0.0, times});
       run.set_min_end_time(times.back());  // the run goes on to the last snapshot
@@ -98,10 +98,10 @@ class Session : public PictureSession {
 
 }  // namespace
 
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run,
+std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
                                                 const SceneDef& scene, const SceneSetup& setup,
                                                 const std::string& out_dir) {
-  return std::make_unique<Session>(o, run, scene, setup, out_dir);
+  return std::make_unique<Session>(o, run, world, scene, setup, out_dir);
 }
 
 // --snapshot-format if given, else the -o name's extension (.pdf, .svg), else PNG. A format
@@ -134,15 +134,16 @@ int render_command(const RenderOptions& o) {
   decode_checkpoint(bytes, io::physics_key(scene), world, o.checkpoint);
   const double t_star = world.time() / setup.unit_time;
   const render::FrameOptions frame = frame_options(o.picture);
-  render::FrameMaker maker(frame, scene, setup);
+  render::FrameMaker maker(frame, scene, setup, &world);
   render::write_picture(o.output, maker, world, t_star, format);
   if (!o.describe.empty()) {
     const render::View& v = maker.view();
+    const int W = maker.options().width, H = maker.options().height;
     nlohmann::json j;
     j["t_star"] = t_star;
-    j["width"] = frame.width;
-    j["height"] = frame.height;
-    j["extent"] = {v.x0, v.x0 + frame.width / v.scale, v.y0, v.y0 + frame.height / v.scale};
+    j["width"] = W;
+    j["height"] = H;
+    j["extent"] = {v.x0, v.x0 + W / v.scale, v.y0, v.y0 + H / v.scale};
     j["legend"] = nlohmann::json::array();
     for (const auto& [c, label] : maker.legend_entries()) {
       char hex[8];
@@ -158,8 +159,8 @@ int render_command(const RenderOptions& o) {
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between) {
   using Clock = std::chrono::steady_clock;
-  const render::FrameOptions frame = frame_options(o);
-  render::FrameMaker maker(frame, scene, setup);
+  render::FrameMaker maker(frame_options(o), scene, setup, &world);
+  const render::FrameOptions& frame = maker.options();
   std::vector<render::Image> images;
   double draw = 0, png = 0;
   std::size_t png_bytes = 0;

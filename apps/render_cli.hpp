@@ -73,8 +73,9 @@ class PictureSession {
   virtual void finish() = 0;              // completes the video
   virtual std::string report() const = 0; // what was written, for stderr
 };
-// Throws (std::exception) on bad options or when the renderer cannot start.
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run,
+// Throws (std::exception) on bad options or when the renderer cannot start. `world` is the
+// state the run starts from: the whole camera is decided on it, and a frame height of 0 sized.
+std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
                                                 const SceneDef& scene, const SceneSetup& setup,
                                                 const std::string& out_dir);
 // `runout bench --frames N`: times drawing (+ read-back), PNG encoding and video encoding of

@@ -278,7 +278,7 @@ int run_command(const RunOptions& o) {
   std::unique_ptr<PictureSession> pictures;
   if (o.pictures.wants_pictures()) {
     if (o.pictures.snapshot_dir.empty() && !o.pictures.snapshots.empty()) io::make_directories(folder.staging);
-    pictures = attach_pictures(o.pictures, run, scene, setup, folder.staging);
+    pictures = attach_pictures(o.pictures, run, world, scene, setup, folder.staging);
   }
   if (!o.quiet) {
     std::fprintf(stderr, "runout: %zu discs, dt = %.3e s (%.0f steps per t*), %d thread%s\n",

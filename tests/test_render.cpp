@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "runout/render/colormap.hpp"
 #include "runout/render/frame.hpp"
 #include "runout/render/gl_renderer.hpp"
 #include "runout/render/image.hpp"
@@ -119,6 +120,92 @@ TEST(Compare, CommandLineExitCodes) {
   EXPECT_TRUE(std::filesystem::exists(dir / "d.png"));
   EXPECT_EQ(run((dir / "a.png").string() + " " + (dir / "missing.png").string()), 2);
   std::filesystem::remove_all(dir);
+}
+
+// ---- cameras ----
+
+// A box like the avalanche's: a 45 degree incline from (-10, 10) to the foot at (0, 0), a floor
+// to x = 30, and a back wall and an end wall 60 m tall; a row of eleven touching discs of
+// diameter 1 on the floor from x = 0 to 11. The region the mass can reach is the bed, 40 m
+// across and 10 m up (the incline's top); the walls rise six times higher.
+struct TallWallScene {
+  SceneDef scene;
+  SceneSetup setup;
+  std::optional<World> world;
+  TallWallScene() {
+    scene.species = {{"disc", 1.0, 0.0, 1.0}};
+    scene.walls = {{"bed", {{-10.0, 10.0}, {0.0, 0.0}, {30.0, 0.0}}, true},
+                   {"back", {{-10.0, 70.0}, {-10.0, 10.0}}, false},
+                   {"end", {{30.0, 0.0}, {30.0, 60.0}}, false}};
+    for (int k = 0; k < 11; ++k) scene.particles.push_back(testing::disc(0.5 + k, 0.5, 1.0));
+    setup = derive_setup(scene);
+    world.emplace(build_explicit_world(scene, setup, 1));
+  }
+};
+
+FrameOptions bare_frame(CameraMode camera, int width, int height) {
+  FrameOptions o;
+  o.width = width;
+  o.height = height;
+  o.camera = camera;
+  o.overlays = false;  // no band at the top: the margins are 1.5 % of the width, 10 px at 640
+  return o;
+}
+
+TEST(Cameras, WholeFitsTheBedAndThePileNotTheWallTops) {
+  static TallWallScene g;
+  FrameMaker maker(bare_frame(CameraMode::whole, 640, 360), g.scene, g.setup, &*g.world);
+  // 40 m across 640 - 2 x 10 px: 15.5 px/m (fitting the 70 m tall walls into 340 px gave 4.9).
+  EXPECT_DOUBLE_EQ(maker.view().scale, 15.5);
+  const Image img = maker.make(*g.world, 0.0);
+  // The back wall (x = -10 m, column 10) rises from the incline's top (y = 10 m) and stops a
+  // margin (10 px) above it: drawn 5 px above the top, sky 20 px above.
+  const double top_row = 180.0 - 5.0 * 15.5;  // y = 10 m: the box's centre (y = 5) is row 180
+  EXPECT_EQ(img.at(10, static_cast<int>(top_row) - 20), (Rgba{255, 255, 255, 255}));
+  EXPECT_NE(img.at(10, static_cast<int>(top_row) - 5), (Rgba{255, 255, 255, 255}));
+}
+
+TEST(Cameras, HeightZeroFollowsTheCamerasAspect) {
+  static TallWallScene g;
+  // whole: 10 m of 40 m at 15.5 px/m is 155 px, plus two 10 px margins: 175, rounded up to even.
+  EXPECT_EQ(FrameMaker(bare_frame(CameraMode::whole, 640, 0), g.scene, g.setup, &*g.world).options().height, 176);
+  // deposit: the row, 11 m long and 1.5 m tall (half a D below it for the bed): 620 / 11 px/m,
+  // 84.5 px + 20.
+  EXPECT_EQ(FrameMaker(bare_frame(CameraMode::deposit, 640, 0), g.scene, g.setup, &*g.world).options().height, 106);
+  // window: its own aspect, 20 m x 5 m; front: 16:9.
+  FrameOptions win = bare_frame(CameraMode::window, 640, 0);
+  win.window = {0.0, 0.0, 20.0, 5.0};
+  EXPECT_EQ(FrameMaker(win, g.scene, g.setup, &*g.world).options().height, 160);
+  EXPECT_EQ(FrameMaker(bare_frame(CameraMode::front, 640, 0), g.scene, g.setup, &*g.world).options().height, 360);
+  // With overlays the band on top adds to the height, and no World at all is refused.
+  FrameOptions with_band = bare_frame(CameraMode::whole, 640, 0);
+  with_band.overlays = true;
+  EXPECT_GT(FrameMaker(with_band, g.scene, g.setup, &*g.world).options().height, 176 + 20);
+  EXPECT_THROW(FrameMaker(bare_frame(CameraMode::whole, 640, 0), g.scene, g.setup), std::invalid_argument);
+}
+
+TEST(Cameras, DepositCoversTheBodyWithTheOverlaysAboveIt) {
+  static TallWallScene g;
+  FrameOptions o = bare_frame(CameraMode::deposit, 1280, 0);
+  o.overlays = true;
+  FrameMaker maker(o, g.scene, g.setup, &*g.world);
+  const Image img = maker.make(*g.world, 0.0);
+  // The row spans the width between the margins (19 px each at 1280): its first and last
+  // discs' centres are at 0.5 and 10.5 m of 11 m.
+  const double scale = maker.view().scale;
+  EXPECT_NEAR(scale, (1280 - 2 * 19) / 11.0, 1e-9);
+  const int H = maker.options().height;
+  const double top_world = maker.view().y0 + H / scale;  // y of the frame's top edge
+  const int row = static_cast<int>((top_world - 0.5) * scale);
+  for (int k : {0, 10}) {
+    const int col = static_cast<int>((0.5 + k - maker.view().x0) * scale);
+    EXPECT_EQ(img.at(col, row), palette::kLarge) << "disc " << k;
+  }
+  // The frame is the band, two margins and the 1.5 m box; the box starts a margin below the
+  // band, so no panel covers a disc.
+  const double band = H - 2 * 19 - 1.5 * scale;
+  EXPECT_GT(band, 40);
+  EXPECT_NEAR((top_world - 1.0) * scale, band + 19, 1.0);
 }
 
 // ---- golden frames ----

@@ -52,9 +52,9 @@ View fit_view(double x0, double y0, double x1, double y1, int width, int height,
   return {cx - 0.5 * width / scale, cy - 0.5 * height / scale, scale};
 }
 
-FrameMaker::FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup)
-    : options_(options), scene_(scene), setup_(setup), gl_(options.width, options.height) {
-  gl_.set_method(options.method);
+FrameMaker::FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup,
+                       const World* first)
+    : options_(options), scene_(scene), setup_(setup) {
   // Two or three species: the Okabe–Ito pair (and green for a third); a polydisperse pile's
   // classes: viridis by size, dark for the smallest, stopping short of its pale yellow.
   const int n = static_cast<int>(scene.species.size());
@@ -70,6 +70,15 @@ FrameMaker::FrameMaker(const FrameOptions& options, const SceneDef& scene, const
   if (present.size() > 3)
     for (std::size_t r = 0; r < present.size(); ++r)
       species_colour_[present[r]] = viridis(0.85 * static_cast<double>(r) / (present.size() - 1));
+  if (options_.height == 0) {
+    if (!first) throw std::invalid_argument("a frame height of 0 needs the first frame's World to size it");
+    options_.height = frame_height_for(*first);
+  }
+  gl_.emplace(options_.width, options_.height);
+  gl_->set_method(options_.method);
+  // The whole camera is decided on the state the pictures start from, so snapshots that begin
+  // later (t* = 20, 60) share the movie's window and the height 0 was sized for.
+  if (first && options_.camera == CameraMode::whole) decide_whole(*first);
 }
 
 namespace {
@@ -82,21 +91,107 @@ struct Box {
 
 }  // namespace
 
+std::optional<std::array<double, 4>> FrameMaker::content_box(const World& world) const {
+  const auto& p = world.particles();
+  const double D = setup_.large_diameter;
+  Box b;
+  switch (options_.camera) {
+    case CameraMode::whole: {
+      // The region the mass can reach: across, every wall's ends (the back wall to the end
+      // wall); up, the bed (the incline's top) and the discs, not the walls' tops: back and end
+      // walls rise 30-60 D above a pile a few D deep, and fitting them left the pile in the
+      // bottom fifth of an empty box. Walls above the box run off the top of the frame.
+      Box bed;
+      for (const auto& s : world.segments())
+        if (s.active) {
+          b.add(s.a.x(), s.a.y());
+          b.add(s.b.x(), s.b.y());
+          if (s.bed) { bed.add(s.a.x(), s.a.y()); bed.add(s.b.x(), s.b.y()); }
+        }
+      if (!bed.empty()) { b.y0 = bed.y0; b.y1 = bed.y1; }  // no bed (plates only): all walls
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k]);
+        b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]);
+      }
+      break;
+    }
+    case CameraMode::deposit: {
+      // The body of the mass (its scattered ends left out, as for L1) and half a D under it, so
+      // the bed shows.
+      const auto [start, end] = deposit_extent(p, D, 0.0, 1);  // lone discs beyond a gap left out
+      for (std::size_t k = 0; k < p.size(); ++k)
+        if (p.x[k] >= start && p.x[k] <= end) {
+          b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k] - 0.5 * D);
+          b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]);
+        }
+      break;
+    }
+    case CameraMode::front:
+    case CameraMode::window:
+      return std::nullopt;
+  }
+  if (b.empty()) b = {-1, -1, 1, 1};
+  return std::array<double, 4>{b.x0, b.y0, b.x1, b.y1};
+}
+
+namespace {
+// The margin around a fitted box, in pixels: 1.5 % of the width, so a strip's margins are as
+// thin as a 16:9 frame's side margins.
+int content_margin_px(int width) { return std::max(4, static_cast<int>(std::lround(0.015 * width))); }
+}  // namespace
+
+View FrameMaker::fit_content(const std::array<double, 4>& box) {
+  const int W = options_.width, H = options_.height, m = content_margin_px(W);
+  const int band = overlay_layout().band;
+  const double w = std::max(box[2] - box[0], 1e-9), h = std::max(box[3] - box[1], 1e-9);
+  const double usable_w = std::max(W - 2.0 * m, 1.0), usable_h = std::max(H - band - 2.0 * m, 1.0);
+  return place_content(box, std::min(usable_w / w, usable_h / h));
+}
+
+View FrameMaker::place_content(const std::array<double, 4>& box, double scale) {
+  // The box's centre at the centre of the frame below the band (image rows run down, world y up).
+  const int band = overlay_layout().band;
+  const double cx = 0.5 * (box[0] + box[2]), cy = 0.5 * (box[1] + box[3]);
+  return {cx - 0.5 * options_.width / scale, cy - 0.5 * (options_.height - band) / scale, scale};
+}
+
+int FrameMaker::frame_height_for(const World& world) {
+  const int W = options_.width;
+  double height = 9.0 / 16.0 * W;  // front: a 16:9 window, as wide as --front-width
+  if (const auto box = content_box(world)) {
+    // A wide box gives a strip; a tall one (a pile seen by the deposit camera) at most a square.
+    const double w = std::max((*box)[2] - (*box)[0], 1e-9), h = std::max((*box)[3] - (*box)[1], 1e-9);
+    const int m = content_margin_px(W);
+    height = overlay_layout().band + 2.0 * m + h * (W - 2.0 * m) / w;
+  } else if (options_.camera == CameraMode::window) {
+    const auto& win = options_.window;
+    height = W * (win[3] - win[1]) / (win[2] - win[0]);
+  }
+  if (content_box(world)) height = std::min<double>(height, W);
+  const int even = 2 * static_cast<int>(std::ceil(height / 2.0 - 1e-9));  // H.264 needs even sizes
+  return std::clamp(even, 16, 8192);
+}
+
+void FrameMaker::decide_whole(const World& world) {
+  const auto box = *content_box(world);
+  view_ = fit_content(box);
+  // The back wall, the gate and the end wall end a margin above the pile instead of running up
+  // into the overlays' band.
+  wall_top_ = box[3] + content_margin_px(options_.width) / view_.scale;
+  have_view_ = true;
+}
+
 void FrameMaker::update_camera(const World& world, double t_star) {
   const auto& p = world.particles();
   const int W = options_.width, H = options_.height;
   const double D = setup_.large_diameter;
   switch (options_.camera) {
-    case CameraMode::whole: {
-      if (have_view_) return;  // fixed for the whole movie
-      Box b;
-      for (const auto& s : world.segments())
-        if (s.active) { b.add(s.a.x(), s.a.y()); b.add(s.b.x(), s.b.y()); }
-      for (std::size_t k = 0; k < p.size(); ++k) { b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k]); b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]); }
-      if (b.empty()) b = {-1, -1, 1, 1};
-      view_ = fit_view(b.x0, b.y0, b.x1, b.y1, W, H, 0.02);
+    case CameraMode::whole:
+      // Decided once, on the first state (the pile and the geometry): one scale and one window
+      // for the whole movie. The pile does not rise above its start, and the end wall stops it.
+      if (have_view_) return;
+      decide_whole(world);
       break;
-    }
     case CameraMode::window: {
       const auto& w = options_.window;
       view_ = fit_view(w[0], w[1], w[2], w[3], W, H, 0.0);
@@ -133,20 +228,10 @@ void FrameMaker::update_camera(const World& world, double t_star) {
       break;
     }
     case CameraMode::deposit: {
-      // Fits the body of the mass (its scattered ends left out, as for L1); the scale is set by
-      // the first frame and kept, the window recentred on the body.
-      const auto [start, end] = deposit_extent(p, D, 0.0, 1);  // lone discs beyond a gap left out
-      Box b;
-      for (std::size_t k = 0; k < p.size(); ++k)
-        if (p.x[k] >= start && p.x[k] <= end) {
-          b.add(p.x[k] - p.radius[k], p.y[k] - p.radius[k]);
-          b.add(p.x[k] + p.radius[k], p.y[k] + p.radius[k]);
-        }
-      if (b.empty()) b = {-1, -1, 1, 1};
-      const View fitted = fit_view(b.x0, b.y0 - 0.5 * D, b.x1, b.y1, W, H, 0.03);  // the bed shows
-      const double scale = have_view_ ? view_.scale : fitted.scale;
-      const double cx = fitted.x0 + 0.5 * W / fitted.scale, cy = fitted.y0 + 0.5 * H / fitted.scale;
-      view_ = {cx - 0.5 * W / scale, cy - 0.5 * H / scale, scale};
+      // Fits the body of the mass; the scale is set by the first frame and kept, the window
+      // recentred on the body.
+      const auto box = *content_box(world);
+      view_ = have_view_ ? place_content(box, view_.scale) : fit_content(box);
       break;
     }
   }
@@ -259,30 +344,52 @@ class ImageCanvas : public Canvas {
 
 }  // namespace
 
+// Every overlay sits in one band across the top: the t* stamp and the scale bar at the left,
+// the legend or colour bar at the right. The whole and deposit cameras fit the pile below the
+// band, so no panel covers a disc (a strip frame has no empty corner to spare).
+FrameMaker::OverlayLayout FrameMaker::overlay_layout() {
+  OverlayLayout l;
+  // From the width alone, so a frame whose height follows the camera can be sized with it;
+  // the same as H / 36 in a 16:9 frame.
+  l.fs = std::max(10, static_cast<int>(std::lround(options_.width / 64.0)));
+  l.pad = std::max(4, l.fs / 2);
+  l.line = std::max(1, l.fs / 9);
+  l.asc = text_.ascent(l.fs);
+  if (!options_.overlays) return l;
+  const int stamp_bottom = l.pad + l.asc + l.fs / 3;
+  const int scale_bottom = l.pad / 2 + l.asc + l.fs / 2 + 2 * l.line + l.pad / 2;
+  int right_bottom;
+  if (options_.color == ColorMode::spin || options_.color == ColorMode::speed)
+    right_bottom = l.pad + l.asc + l.fs / 3 + std::max(6, l.fs * 2 / 3) + l.asc + 2 + l.fs / 3;
+  else
+    right_bottom = l.pad + (l.fs + l.fs / 3) * static_cast<int>(legend_entries().size());
+  l.band = std::max({stamp_bottom, scale_bottom, right_bottom}) + l.pad / 2;
+  return l;
+}
+
 void FrameMaker::draw_overlays(Canvas& canvas, const FramePlan& plan) {
   const double t_star = plan.t_star;
-  const int W = options_.width, H = options_.height;
-  const int fs = std::max(10, static_cast<int>(std::lround(H / 36.0)));  // font pixel size
-  const int pad = std::max(4, fs / 2);
-  const int line = std::max(1, fs / 9);
+  const int W = options_.width;
+  const OverlayLayout l = overlay_layout();
+  const int fs = l.fs, pad = l.pad, line = l.line, asc = l.asc;
   const Rgba ink = palette::kInk, panel{255, 255, 255, 210};
-  const int asc = text_.ascent(fs);
 
-  // t* stamp, top left.
+  // t* stamp, top left; its panel as wide as the widest stamp, so the scale bar beside it
+  // does not move from frame to frame.
   char stamp[64];
   std::snprintf(stamp, sizeof stamp, "t* = %.1f", t_star);
-  const int stamp_w = text_.width(stamp, fs);
+  const int stamp_w = std::max(text_.width(stamp, fs), text_.width("t* = 000.0", fs));
   canvas.rect(pad / 2, pad / 2, pad + stamp_w + pad / 2, pad + asc + fs / 3, panel);
   canvas.text(pad, pad + asc, stamp, fs, ink);
 
-  // Scale bar in units of D, bottom left: about an eighth of the width.
+  // Scale bar in units of D, right of the stamp: about an eighth of the width.
   const double D = setup_.large_diameter;
   const double px_per_D = D * plan.view.scale;
   const double n_D = nice_below(std::max(W / 8.0 / px_per_D, 1e-3));
   const int bar = static_cast<int>(std::lround(n_D * px_per_D));
   const std::string label = format_number(n_D) + " D";
-  const int bx = pad, by = H - pad - line;
-  canvas.rect(pad / 2, by - asc - fs / 2 - line, bx + std::max(bar, text_.width(label, fs)) + pad / 2, H - pad / 2, panel);
+  const int bx = pad + stamp_w + 2 * pad, by = pad / 2 + asc + fs / 2 + line;
+  canvas.rect(bx - pad / 2, pad / 2, bx + std::max(bar, text_.width(label, fs)) + pad / 2, by + line + pad / 2, panel);
   canvas.rect(bx, by, bx + bar, by + line + 1, ink);
   canvas.rect(bx, by - fs / 3, bx + line + 1, by + line + 1, ink);
   canvas.rect(bx + bar - line - 1, by - fs / 3, bx + bar, by + line + 1, ink);
@@ -330,8 +437,17 @@ FramePlan FrameMaker::plan(const World& world, double t_star) {
   FramePlan plan;
   plan.view = view_;
   plan.discs = std::move(discs_);  // colour_discs() refills it next frame
-  for (const auto& s : world.segments())
-    if (s.active) plan.walls.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
+  for (const auto& s : world.segments()) {
+    if (!s.active) continue;
+    SegmentLine w{s.a.x(), s.a.y(), s.b.x(), s.b.y()};
+    if (w.ay > wall_top_ && w.by > wall_top_) continue;  // wholly above: not drawn
+    if (w.ay > wall_top_ || w.by > wall_top_) {  // cut where it crosses the top
+      const double t = (wall_top_ - w.ay) / (w.by - w.ay);
+      const double cx = w.ax + t * (w.bx - w.ax);
+      if (w.ay > wall_top_) { w.ax = cx; w.ay = wall_top_; } else { w.bx = cx; w.by = wall_top_; }
+    }
+    plan.walls.push_back(w);
+  }
   plan.t_star = t_star;
   last_t_star_ = t_star;
   return plan;
@@ -349,7 +465,7 @@ DrawStyle FrameMaker::style(const FramePlan& plan) const {
 }
 
 Image FrameMaker::draw(const FramePlan& plan) {
-  Image img = gl_.draw(plan.view, plan.discs, plan.walls, style(plan));
+  Image img = gl_->draw(plan.view, plan.discs, plan.walls, style(plan));
   if (options_.overlays) {
     ImageCanvas canvas(img, text_);
     draw_overlays(canvas, plan);

@@ -207,7 +207,7 @@ Image GlRenderer::draw(const View& view, const DiscBatch& discs,
     throw RenderError("OpenGL error " + std::to_string(err) + " while drawing a frame");
 
   // The frame is the surface without its guard band; un-premultiply translucent pixels.
-  Image out(width_, height_);
+  Image out = Image::zeroed(width_, height_);
   for (int y = 0; y < height_; ++y) {
     const std::uint8_t* src = &m.surface[(static_cast<std::size_t>(y + kGuard) * m.surface_w + kGuard) * 4];
     std::uint8_t* dst = &out.rgba[static_cast<std::size_t>(y) * width_ * 4];

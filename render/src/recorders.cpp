@@ -1,6 +1,7 @@
 #include "runout/render/recorders.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <limits>
 
@@ -9,11 +10,20 @@
 
 namespace runout::render {
 
+namespace {
+// llvmpipe starts its rasteriser threads (LP_NUM_THREADS, default one per core) with the first
+// OpenGL context, on the thread that makes it: the simulation thread, at normal priority. They
+// then preempted the physics whenever the idle drawing thread handed them a frame. With 0 the
+// drawing thread rasterises itself, under SCHED_IDLE like the rest of the movie's work. Read
+// once per process; a value the user set is kept.
+int draw_on_the_idle_thread() { return ::setenv("LP_NUM_THREADS", "0", /*overwrite=*/0); }
+}  // namespace
+
 MovieRecorder::MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                             const std::string& video_path, const VideoOptions& video,
+                             const World& first, const std::string& video_path, const VideoOptions& video,
                              const std::string& png_dir)
-    : maker_(frame, scene, setup), png_dir_(png_dir), keep_alpha_(frame.transparent) {
-  if (!video_path.empty()) video_.emplace(video_path, frame.width, frame.height, video);
+    : maker_((draw_on_the_idle_thread(), frame), scene, setup, &first), png_dir_(png_dir), keep_alpha_(frame.transparent) {
+  if (!video_path.empty()) video_.emplace(video_path, maker_.options().width, maker_.options().height, video);
   if (!png_dir_.empty()) io::make_directories(png_dir_);
   worker_ = std::make_unique<IdleWorker<FramePlan>>(4, [this](FramePlan& plan) { draw(plan); });
 }
@@ -55,8 +65,9 @@ void write_picture(const std::string& path, FrameMaker& maker, const World& worl
 }
 
 SnapshotWriter::SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
-                               std::string dir, std::vector<double> times, PictureFormat format)
-    : maker_(frame, scene, setup), dir_(std::move(dir)), times_(std::move(times)), format_(format) {
+                               const World& first, std::string dir, std::vector<double> times,
+                               PictureFormat format)
+    : maker_(frame, scene, setup, &first), dir_(std::move(dir)), times_(std::move(times)), format_(format) {
   io::make_directories(dir_);
 }
 

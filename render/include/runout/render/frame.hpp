@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,7 +25,7 @@ const char* to_string(ColorMode m);
 const char* to_string(CameraMode m);
 
 struct FrameOptions {
-  int width = 1280, height = 720;
+  int width = 1280, height = 720;  // height 0: from the camera's aspect (FrameMaker resolves it)
   ColorMode color = ColorMode::species;
   CameraMode camera = CameraMode::whole;
   std::array<double, 4> window{0, 0, 0, 0};  // camera window: x0, y0, x1, y1 in metres
@@ -52,7 +53,11 @@ struct FramePlan {
 // of one FrameMaker has the same scale (and the front camera moves smoothly).
 class FrameMaker {
  public:
-  FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup);
+  // `first`: the World of the first frame. A height of 0 needs it: the frame is then as tall as
+  // the camera's view of that World asks for (whole, deposit: their extent; window: its aspect;
+  // front: 16:9), rounded up to even, 16..8192; options().height gives it.
+  FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup,
+             const World* first = nullptr);
   // plan() reads the World and moves the camera; draw() makes the picture (any one thread at a
   // time). make() is both.
   FramePlan plan(const World& world, double t_star);
@@ -72,6 +77,20 @@ class FrameMaker {
 
  private:
   void update_camera(const World& world, double t_star);
+  void decide_whole(const World& world);  // the whole camera's one window, and wall_top_
+  // The whole and deposit cameras' world box (m) for this World; the other cameras have none.
+  std::optional<std::array<double, 4>> content_box(const World& world) const;
+  // A box fitted below the overlays' band (they never cover the pile), with a margin.
+  View fit_content(const std::array<double, 4>& box);
+  View place_content(const std::array<double, 4>& box, double scale);  // centred below the band
+  int frame_height_for(const World& world);  // the height 0 resolves to
+  // Where the overlays go, in frame pixels; `band` is the height of the strip they take at the
+  // top (0 without overlays). draw_overlays() draws exactly this.
+  struct OverlayLayout {
+    int fs = 10, pad = 5, line = 1, asc = 8;
+    int band = 0;
+  };
+  OverlayLayout overlay_layout();
   void colour_discs(const World& world);
   DrawStyle style(const FramePlan& plan) const;
   void draw_overlays(Canvas& canvas, const FramePlan& plan);
@@ -80,12 +99,13 @@ class FrameMaker {
   FrameOptions options_;
   const SceneDef& scene_;
   const SceneSetup& setup_;
-  GlRenderer gl_;
   TextRenderer text_;
+  std::optional<GlRenderer> gl_;  // made once the frame size is known
   DiscBatch discs_;
   View view_;
   bool have_view_ = false;
   double last_t_star_ = 0;
+  double wall_top_ = std::numeric_limits<double>::infinity();  // walls are cut at this y (m)
   double speed_limit_ = 0;
   std::vector<Rgba> species_colour_;  // species mode, per species
 };

@@ -19,9 +19,11 @@ namespace runout::render {
 // overlap the physics.
 class MovieRecorder : public Observer {
  public:
-  // `video_path` empty: no video; `png_dir` empty: no PNG sequence.
-  MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+  // `video_path` empty: no video; `png_dir` empty: no PNG sequence. `first`: the World the
+  // movie starts from (it sizes a frame of height 0).
+  MovieRecorder(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup, const World& first,
                 const std::string& video_path, const VideoOptions& video, const std::string& png_dir);
+  const FrameOptions& frame() const { return maker_.options(); }  // with the height resolved
   ~MovieRecorder() override;
   void observe(const World& world, double t_star) override;
   void finish();  // draws what is queued and completes the video file; rethrows worker errors
@@ -42,7 +44,7 @@ class MovieRecorder : public Observer {
 // nearest T; its stamp shows the actual t*).
 class SnapshotWriter : public Observer {
  public:
-  SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup,
+  SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup, const World& first,
                  std::string dir, std::vector<double> times, PictureFormat format = PictureFormat::png);
   void observe(const World& world, double t_star) override;
   std::vector<std::string> written() const { return written_; }
