@@ -31,19 +31,24 @@ struct RollingSpringDashpot {
     return {k_r, c.rolling_damping * 2 * std::sqrt(inertia * k_r), mu_r * r};
   }
 
-  // The torque on i (on j it is the opposite). Losses: the plastic rotation times the limit
-  // torque, and the dashpot's power while the spring holds.
+  // The torque on i (on j it is the opposite). Losses, by the spring's energy balance over
+  // the step: the bodies turn against the spring's new torque, -M_k rate dt, less what the
+  // spring now holds more, (M_k^2 - M_old^2) / 2 k_r. That is the plastic rotation times the
+  // limit while it yields, and also the energy a falling limit releases when F_n drops; plus
+  // the dashpot's power while the spring holds.
   static double torque(const Params& p, const ContactKinematics& k, double normal_force,
                        double* history, double& loss) {
     double& spring = history[0];
-    const double rate = k.spin_difference;
+    const double before = spring, rate = k.spin_difference;
     const double trial = spring - p.k_roll * rate * k.dt;
     const double limit = p.lever * normal_force;
     spring = std::max(-limit, std::min(trial, limit));
     const bool holds = spring == trial;
     const double dashpot = holds ? -p.damping * rate : 0.0;
-    loss += (p.k_roll > 0 ? std::abs(spring * (trial - spring)) / p.k_roll : 0.0) +
-            (holds ? p.damping * rate * rate * k.dt : 0.0);
+    const double released = p.k_roll > 0 ? -spring * rate * k.dt -
+                                                0.5 * (spring * spring - before * before) / p.k_roll
+                                          : 0.0;
+    loss += (holds ? 0.0 : released) + (holds ? p.damping * rate * rate * k.dt : 0.0);
     return spring + dashpot;
   }
   static double elastic_energy(const Params& p, const ContactKinematics&, const double* history) {
