@@ -35,7 +35,8 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
         NeighborSearch search;
         PairContacts pairs;
         WallContacts wall_pairs;
-        search.rebuild(p, walls, skin, threads, true, pairs, wall_pairs);
+        DiscRuns runs;
+        search.rebuild(p, walls, skin, threads, 1, pairs, wall_pairs, runs);
         std::set<std::pair<int, int>> found, expected;
         for (std::size_t q = 0; q < pairs.size(); ++q) found.insert({pairs.i[q], pairs.j[q]});
         for (std::size_t a = 0; a < p.size(); ++a)
@@ -51,6 +52,17 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
           for (std::size_t s = 0; s < walls.size(); ++s)
             if (distance_to(walls[s], {p.x[a], p.y[a]}) < p.radius[a] + skin) wall_expected.insert({int(a), int(s)});
         EXPECT_EQ(wall_found, wall_expected);
+        // Each disc's run: the pairs where it is i (by j), then where it is j (by i), as
+        // pushes on i at [q] and on j at [size + q]; every push read once.
+        std::vector<std::vector<std::int32_t>> expected_run(p.size()), run(p.size());
+        const auto np = static_cast<std::int32_t>(pairs.size());
+        for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.i[q]].push_back(q);
+        for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(np + q);
+        ASSERT_EQ(runs.start.size(), p.size() + 1);
+        for (std::size_t k = 0; k < p.size(); ++k)
+          run[k].assign(runs.source.begin() + runs.start[k], runs.source.begin() + runs.start[k + 1]);
+        EXPECT_EQ(run, expected_run);
+        EXPECT_EQ(runs.start.back(), 2 * np);
       }
     }
   }

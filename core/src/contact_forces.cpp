@@ -105,8 +105,8 @@ struct Kernel {
   double impact_rate;
   double* __restrict history;  // column m of contact q at history[m * count + q] (SoA)
   std::int64_t count;
-  double* __restrict fx; double* __restrict fy;
-  double* __restrict torque_i; double* __restrict torque_j;  // torque_j: pairs only
+  // The push on the disc (pairs: on i) at [q]; pairs also write the push on j at [count + q].
+  double* __restrict fx; double* __restrict fy; double* __restrict torque;
 
   [[gnu::always_inline]] ContactSums one(std::int64_t q) const {
     constexpr int W = Model::kHistory;
@@ -126,12 +126,17 @@ struct Kernel {
     for (int m = 0; m < W; ++m) history[m * count + q] = c.touching ? h[m] : 0.0;
     const double fn = c.touching ? a.normal : 0.0, ft = c.touching ? a.tangential : 0.0;
     // Force on i: the normal pushes i away from j, the tangential acts along s = (-ny, nx).
-    fx[q] = -fn * c.nx - ft * c.ny;
-    fy[q] = -fn * c.ny + ft * c.nx;
+    const double push_x = -fn * c.nx - ft * c.ny, push_y = -fn * c.ny + ft * c.nx;
+    fx[q] = push_x;
+    fy[q] = push_y;
+    if constexpr (Source::kPairs) {  // Newton's third law
+      fx[count + q] = -push_x;
+      fy[count + q] = -push_y;
+    }
     // Without friction or rolling the torques stay the zeros the list rebuild wrote.
     if constexpr (Model::kFriction || Model::kRolling) {
-      torque_i[q] = c.touching ? a.torque_i : 0.0;
-      if constexpr (Source::kPairs) torque_j[q] = c.touching ? a.torque_j : 0.0;
+      torque[q] = c.touching ? a.torque_i : 0.0;
+      if constexpr (Source::kPairs) torque[count + q] = c.touching ? a.torque_j : 0.0;
     }
     // The guard watches impacts (loading faster than impact_rate), not the permanent set of
     // a static hysteretic contact.
@@ -219,7 +224,7 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               st.impact_rate, pairs.history.data(),
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
-                                              pairs.torque_i.data(), pairs.torque_j.data()};
+                                              pairs.torque.data()};
   PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks);
   profile.pair_forces += seconds_since(t0);
   t0 = Clock::now();
@@ -228,7 +233,7 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               st.impact_rate, walls.history.data(),
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
-                                              walls.torque.data(), nullptr};
+                                              walls.torque.data()};
   const PassSums w = run(wk, static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks);
   profile.wall_forces += seconds_since(t0);
   sums.worst = std::max(sums.worst, w.worst);

@@ -4,55 +4,13 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 
 #include "step_phases.hpp"
 
 namespace runout::phases {
 
 namespace {
-
-// Sum of the contact forces and torques on disc k plus gravity, as accelerations (eqs.
-// 2.10–2.11): its own row of pairs (k = i), then its incoming pairs (k = j, Newton's third
-// law), then its walls, always in that order, so the sums do not depend on the thread count.
-struct ForceSum {
-  const double* pair_fx; const double* pair_fy;
-  const double* torque_i; const double* torque_j;
-  const std::int32_t* row_start; const std::int32_t* incoming_start; const std::int32_t* incoming;
-  const double* wall_fx; const double* wall_fy; const double* wall_torque;
-  const std::int32_t* wall_row_start;
-  const double* inv_mass; const double* inv_inertia;
-  double gx, gy;
-
-  void operator()(std::int64_t k, double& ax, double& ay, double& alpha) const {
-    double fx = 0, fy = 0, torque = 0;
-    for (std::int32_t q = row_start[k]; q < row_start[k + 1]; ++q) {
-      fx += pair_fx[q]; fy += pair_fy[q]; torque += torque_i[q];
-    }
-    for (std::int32_t e = incoming_start[k]; e < incoming_start[k + 1]; ++e) {
-      const std::int32_t q = incoming[e];
-      fx -= pair_fx[q]; fy -= pair_fy[q]; torque += torque_j[q];
-    }
-    for (std::int32_t q = wall_row_start[k]; q < wall_row_start[k + 1]; ++q) {
-      fx += wall_fx[q]; fy += wall_fy[q]; torque += wall_torque[q];
-    }
-    ax = fx * inv_mass[k] + gx;
-    ay = fy * inv_mass[k] + gy;
-    alpha = torque * inv_inertia[k];
-  }
-};
-
-// Local non-viscous damping (Cundall's, as in PFC): a - share |a| sgn(v) per component. It
-// removes kinetic energy without touching equilibrium (a resting disc feels nothing), so a
-// pile damped to rest is at rest under the undamped law too. Preparation only.
-inline void damp(double share, std::int64_t lo, std::int64_t hi, double* ax, double* ay,
-                 double* alpha, const double* vx, const double* vy, const double* om) {
-  auto sgn = [](double v) { return static_cast<double>((v > 0) - (v < 0)); };
-  for (std::int64_t k = lo; k < hi; ++k) {
-    ax[k] -= share * std::abs(ax[k]) * sgn(vx[k]);
-    ay[k] -= share * std::abs(ay[k]) * sgn(vy[k]);
-    alpha[k] -= share * std::abs(alpha[k]) * sgn(om[k]);
-  }
-}
 
 // Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread.
 template <class Body>
@@ -68,53 +26,115 @@ void for_blocks(std::int64_t n, int threads, const Body& body) {
   }
 }
 
+// The sum of the contact forces and torques on each disc of [lo, hi) plus gravity, as
+// accelerations (eqs. 2.10–2.11): its run of pair pushes (one loop, so one exit to mispredict
+// per disc), then its walls, then F / m + g. The additions are 0 + row + incoming + walls in
+// that order whatever the thread count.
+void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns& runs,
+                   std::int64_t lo, std::int64_t hi, double gx, double gy,
+                   const double* __restrict inv_mass, const double* __restrict inv_inertia,
+                   double* __restrict ax, double* __restrict ay, double* __restrict alpha) {
+  const double* __restrict fx = c.fx.data();
+  const double* __restrict fy = c.fy.data();
+  const double* __restrict torque = c.torque.data();
+  const std::int32_t* __restrict start = runs.start.data();
+  const std::int32_t* __restrict source = runs.source.data();
+  for (std::int64_t k = lo; k < hi; ++k) {
+    double sx = 0, sy = 0, st = 0;
+    for (std::int32_t s = start[k]; s < start[k + 1]; ++s) {
+      const std::int32_t e = source[s];
+      sx += fx[e]; sy += fy[e]; st += torque[e];
+    }
+    ax[k] = sx; ay[k] = sy; alpha[k] = st;
+  }
+  // Few discs touch a wall: adding their contacts after all rows keeps each disc's order
+  // (walls last, by segment) without a loop per disc.
+  for (std::int32_t q = w.row_start[lo]; q < w.row_start[hi]; ++q) {
+    const std::int32_t k = w.disc[q];
+    ax[k] += w.fx[q]; ay[k] += w.fy[q]; alpha[k] += w.torque[q];
+  }
+  for (std::int64_t k = lo; k < hi; ++k) {
+    ax[k] = ax[k] * inv_mass[k] + gx;
+    ay[k] = ay[k] * inv_mass[k] + gy;
+    alpha[k] = alpha[k] * inv_inertia[k];
+  }
+}
+
+// Local non-viscous damping (Cundall's, as in PFC): a - share |a| sgn(v) per component. It
+// removes kinetic energy without touching equilibrium (a resting disc feels nothing), so a
+// pile damped to rest is at rest under the undamped law too. Preparation only.
+void damp(double share, std::int64_t lo, std::int64_t hi, double* __restrict ax,
+          double* __restrict ay, double* __restrict alpha, const double* __restrict vx,
+          const double* __restrict vy, const double* __restrict om) {
+  auto sgn = [](double v) { return static_cast<double>((v > 0) - (v < 0)); };
+  for (std::int64_t k = lo; k < hi; ++k) {
+    ax[k] -= share * std::abs(ax[k]) * sgn(vx[k]);
+    ay[k] -= share * std::abs(ay[k]) * sgn(vy[k]);
+    alpha[k] -= share * std::abs(alpha[k]) * sgn(om[k]);
+  }
+}
+
+// v += a kick, x += v drift over [lo, hi), and how far the discs are from where the lists
+// were built. Parameters rather than captures, so the compiler sees the arrays cannot alias.
+Motion kick_drift(std::int64_t lo, std::int64_t hi, double kick, double drift,
+                  double* __restrict x, double* __restrict y, double* __restrict vx,
+                  double* __restrict vy, double* __restrict om, double* __restrict angle,
+                  const double* __restrict ax, const double* __restrict ay,
+                  const double* __restrict alpha, const double* __restrict x0,
+                  const double* __restrict y0) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double ux_lo = inf, ux_hi = -inf, uy_lo = inf, uy_hi = -inf, u2 = 0, poison = 0;
+#pragma omp simd reduction(min : ux_lo, uy_lo) reduction(max : ux_hi, uy_hi, u2) reduction(+ : poison)
+  for (std::int64_t k = lo; k < hi; ++k) {
+    vx[k] += ax[k] * kick;
+    vy[k] += ay[k] * kick;
+    om[k] += alpha[k] * kick;
+    x[k] += vx[k] * drift;
+    y[k] += vy[k] * drift;
+    angle[k] += om[k] * drift;
+    const double ux = x[k] - x0[k], uy = y[k] - y0[k];
+    ux_lo = std::min(ux_lo, ux); ux_hi = std::max(ux_hi, ux);
+    uy_lo = std::min(uy_lo, uy); uy_hi = std::max(uy_hi, uy);
+    u2 = std::max(u2, ux * ux + uy * uy);
+    // 0 for finite values, NaN once any is infinite or NaN (std::max would pass over a NaN).
+    poison += (x[k] + y[k] + vx[k] + vy[k] + om[k]) * 0.0;
+  }
+  return {ux_lo, ux_hi, uy_lo, uy_hi, u2, poison == 0.0};
+}
+
 }  // namespace
 
+Motion Motion::merge(const Motion& a, const Motion& b) {
+  return {std::min(a.ux_lo, b.ux_lo), std::max(a.ux_hi, b.ux_hi),
+          std::min(a.uy_lo, b.uy_lo), std::max(a.uy_hi, b.uy_hi),
+          std::max(a.max_displacement2, b.max_displacement2), a.finite && b.finite};
+}
+
+double Motion::list_drift() const {
+  if (!(ux_lo <= ux_hi)) return finite ? 0.0 : std::numeric_limits<double>::infinity();
+  return std::max(std::hypot(ux_hi - ux_lo, uy_hi - uy_lo), std::sqrt(max_displacement2));
+}
+
 Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
-               const WallContacts& w, const std::vector<double>& x_at_rebuild,
+               const WallContacts& w, const DiscRuns& runs, const std::vector<double>& x_at_rebuild,
                const std::vector<double>& y_at_rebuild, bool gather, double kick, double drift) {
   const StepSettings& st = step.settings;
-  const ForceSum sum{c.fx.data(), c.fy.data(), c.torque_i.data(), c.torque_j.data(),
-                     c.row_start.data(), c.incoming_start.data(), c.incoming.data(),
-                     w.fx.data(), w.fy.data(), w.torque.data(), w.row_start.data(),
-                     p.inv_mass.data(), p.inv_inertia.data(), st.gravity.x(), st.gravity.y()};
-  const double damping = st.local_damping;
-  double* __restrict x = p.x.data(); double* __restrict y = p.y.data();
-  double* __restrict vx = p.vx.data(); double* __restrict vy = p.vy.data();
-  double* __restrict om = p.omega.data(); double* __restrict angle = p.angle.data();
-  double* __restrict ax = p.ax.data(); double* __restrict ay = p.ay.data();
-  double* __restrict alpha = p.alpha.data();
-  const double* __restrict x0 = x_at_rebuild.data(); const double* __restrict y0 = y_at_rebuild.data();
+  const auto n = static_cast<std::int64_t>(p.size());
   Motion part[kMaxThreads];
-  for_blocks(static_cast<std::int64_t>(p.size()), st.threads,
-             [&](std::int64_t lo, std::int64_t hi, int t) {
-    // The sums first (scalar, data-dependent lengths), then the update as a plain loop the
-    // compiler vectorises.
+  for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) {
     if (gather) {
-      for (std::int64_t k = lo; k < hi; ++k) sum(k, ax[k], ay[k], alpha[k]);
-      if (damping > 0) damp(damping, lo, hi, ax, ay, alpha, vx, vy, om);
+      accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
+                    p.inv_inertia.data(), p.ax.data(), p.ay.data(), p.alpha.data());
+      if (st.local_damping > 0)
+        damp(st.local_damping, lo, hi, p.ax.data(), p.ay.data(), p.alpha.data(), p.vx.data(),
+             p.vy.data(), p.omega.data());
     }
-    double max_d2 = 0;
-    bool finite = true;
-#pragma omp simd reduction(max : max_d2) reduction(&& : finite)
-    for (std::int64_t k = lo; k < hi; ++k) {
-      vx[k] += ax[k] * kick;
-      vy[k] += ay[k] * kick;
-      om[k] += alpha[k] * kick;
-      x[k] += vx[k] * drift;
-      y[k] += vy[k] * drift;
-      angle[k] += om[k] * drift;
-      const double ddx = x[k] - x0[k], ddy = y[k] - y0[k];
-      max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
-      finite = finite && std::isfinite(x[k] + y[k] + vx[k] + vy[k] + om[k]);
-    }
-    part[t] = {max_d2, finite};
+    part[t] = kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
+                         p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(),
+                         p.alpha.data(), x_at_rebuild.data(), y_at_rebuild.data());
   });
-  Motion total;
-  for (int t = 0; t < st.threads; ++t) {
-    total.max_displacement2 = std::max(total.max_displacement2, part[t].max_displacement2);
-    total.finite = total.finite && part[t].finite;
-  }
+  Motion total = part[0];
+  for (int t = 1; t < st.threads; ++t) total = Motion::merge(total, part[t]);
   return total;
 }
 

@@ -49,7 +49,7 @@ void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_seco
 
 void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& segments,
                              double skin, int threads, int history_width,
-                             PairContacts& pairs, WallContacts& walls) {
+                             PairContacts& pairs, WallContacts& walls, DiscRuns& runs) {
   const auto n = static_cast<std::int32_t>(p.size());
   threads = std::max(1, threads);
 
@@ -216,8 +216,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   const size_t np = pairs.i.size();
   pairs.history_width = history_width;
   pairs.history.assign(np * history_width, 0.0);
-  pairs.fx.assign(np, 0); pairs.fy.assign(np, 0);
-  pairs.torque_i.assign(np, 0); pairs.torque_j.assign(np, 0);
+  pairs.fx.assign(2 * np, 0); pairs.fy.assign(2 * np, 0); pairs.torque.assign(2 * np, 0);
   carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.history, old_pairs_.history_width,
                 pairs.row_start, pairs.j, pairs.history, history_width, n, threads);
   const size_t nw = walls.disc.size();
@@ -228,14 +227,20 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
                 old_walls_.history_width, walls.row_start, walls.segment, walls.history,
                 history_width, n, threads);
 
-  // ---- incoming pairs per disc (k is the pair's j), in pair order ----
-  pairs.incoming_start.assign(static_cast<size_t>(n) + 1, 0);
-  for (size_t q = 0; q < np; ++q) ++pairs.incoming_start[pairs.j[q] + 1];
-  std::partial_sum(pairs.incoming_start.begin(), pairs.incoming_start.end(),
-                   pairs.incoming_start.begin());
-  pairs.incoming.resize(np);
-  cursor_.assign(pairs.incoming_start.begin(), pairs.incoming_start.end() - 1);
-  for (size_t q = 0; q < np; ++q) pairs.incoming[cursor_[pairs.j[q]]++] = static_cast<std::int32_t>(q);
+  // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----
+  runs.start.assign(static_cast<size_t>(n) + 1, 0);
+  for (size_t q = 0; q < np; ++q) ++runs.start[pairs.j[q] + 1];
+  for (std::int32_t k = 0; k < n; ++k)
+    runs.start[k + 1] += runs.start[k] + (pairs.row_start[k + 1] - pairs.row_start[k]);
+  runs.source.resize(2 * np);
+  cursor_.resize(n);
+  for (std::int32_t k = 0; k < n; ++k) {
+    std::int32_t at = runs.start[k];
+    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q) runs.source[at++] = q;
+    cursor_[k] = at;
+  }
+  for (size_t q = 0; q < np; ++q)
+    runs.source[cursor_[pairs.j[q]]++] = static_cast<std::int32_t>(np + q);
 }
 
 }  // namespace runout

@@ -2,6 +2,7 @@
 // World::step (world.cpp) calls them in order; each lives in its own file.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "runout/world.hpp"
@@ -29,14 +30,22 @@ ContactEnergy contact_energy(const StepContext& step, const Particles& p,
                              const PairContacts& pairs, const WallContacts& walls);
 
 // Sums each disc's contact forces and torques plus gravity into accelerations (eqs.
-// 2.10–2.11), kicks v += a kick and drifts x += v drift (integrate.cpp). Returns the largest
-// squared displacement since (x0, y0) and whether the state stayed finite.
+// 2.10–2.11), kicks v += a kick and drifts x += v drift (integrate.cpp). Returns how far the
+// discs have moved since the lists were built at (x0, y0) and whether the state stayed finite.
 struct Motion {
+  // The box holding every disc's displacement since the rebuild, and the largest one.
+  double ux_lo = std::numeric_limits<double>::infinity(), ux_hi = -ux_lo;
+  double uy_lo = ux_lo, uy_hi = -ux_lo;
   double max_displacement2 = 0;
   bool finite = true;
+
+  static Motion merge(const Motion& a, const Motion& b);
+  // An upper bound on how much closer any two discs, or a disc and a wall, have come since
+  // the rebuild: the box's diagonal bounds |u_i - u_j| for every pair, and a wall is fixed.
+  double list_drift() const;
 };
 Motion advance(const StepContext& step, Particles& p, const PairContacts& pairs,
-               const WallContacts& walls, const std::vector<double>& x0,
+               const WallContacts& walls, const DiscRuns& runs, const std::vector<double>& x0,
                const std::vector<double>& y0, bool gather, double kick, double drift);
 
 }  // namespace runout::phases

@@ -142,11 +142,11 @@ void World::reorder_discs() {
 void World::rebuild_lists() {
   const auto t0 = Clock::now();
   search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, history_width_,
-                  pairs_, wall_contacts_);
+                  pairs_, wall_contacts_, runs_);
   x_at_rebuild_ = particles_.x;
   y_at_rebuild_ = particles_.y;
   radius_at_rebuild_ = particles_.radius;
-  max_displacement2_ = 0;
+  list_drift_ = 0;
   max_growth_ = 0;
   lists_valid_ = true;
   profile_.rebuild += seconds_since(t0);
@@ -165,9 +165,9 @@ void World::compute_forces() {
 void World::advance(bool gather, double kick, double drift) {
   const auto t0 = Clock::now();
   const phases::Motion m = phases::advance({settings_, table_, segments_}, particles_, pairs_,
-                                           wall_contacts_, x_at_rebuild_, y_at_rebuild_, gather,
-                                           kick, drift);
-  max_displacement2_ = std::max(max_displacement2_, m.max_displacement2);
+                                           wall_contacts_, runs_, x_at_rebuild_, y_at_rebuild_,
+                                           gather, kick, drift);
+  list_drift_ = m.list_drift();
   finite_ = m.finite;
   profile_.integrate += seconds_since(t0);
 }
@@ -176,9 +176,14 @@ void World::advance(bool gather, double kick, double drift) {
 // Velocity Verlet: kick dt/2 + drift dt, [rebuild] forces, kick dt/2.
 void World::step() {
   if (settings_.reorder_every > 0 && steps_ % settings_.reorder_every == 0) reorder_discs();
-  const double dt = settings_.dt, half_skin = 0.5 * settings_.skin;
+  // The lists hold every pair and disc–wall pair within the skin at the rebuild (SPEC §5). An
+  // unlisted pair can touch only once the two have come closer by the skin less their growth:
+  // list_drift bounds how much closer any two discs, or a disc and a fixed wall, have come
+  // (the spread of the displacements, not twice the largest: a flow moving as one barely
+  // stales its lists), and a radius grows on both sides of a pair, and by 2 r behind a wall.
+  const double dt = settings_.dt;
   auto rebuild_if_moved = [&] {
-    if (!lists_valid_ || std::sqrt(max_displacement2_) + max_growth_ >= half_skin) rebuild_lists();
+    if (!lists_valid_ || list_drift_ + 2 * max_growth_ >= settings_.skin) rebuild_lists();
   };
   if (settings_.integrator == IntegratorKind::symplectic_euler) {
     rebuild_if_moved();

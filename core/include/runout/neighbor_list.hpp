@@ -20,13 +20,10 @@ struct PairContacts {
   // overlap_max and the tangential spring.
   std::vector<double> history;
   int history_width = 0;
-  std::vector<double> fx, fy;  // this step's force on i (on j it is the opposite)
-  std::vector<double> torque_i, torque_j;  // this step's torque on each disc
+  // This step's push of pair q on i at [q], and on j at [size() + q] (the force opposite,
+  // the torque the law gives j), so each disc's sum reads one array (DiscRuns).
+  std::vector<double> fx, fy, torque;
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
-  // Pairs whose j == k, in pair order: incoming[incoming_start[k] .. incoming_start[k+1]).
-  // A disc sums its own row, then its incoming pairs: a fixed (i, j) order whatever else the
-  // list holds, so sums are bit-identical for any skin and thread count.
-  std::vector<std::int32_t> incoming_start, incoming;
 
   std::size_t size() const { return i.size(); }
 };
@@ -42,13 +39,24 @@ struct WallContacts {
   std::size_t size() const { return disc.size(); }
 };
 
+// Each disc's pairs in the order its force sum takes (eqs. 2.10–2.11): its own row (it is i,
+// by j), then the pairs where it is j (by i), as indices into the pushes of PairContacts; its
+// walls (WallContacts rows) come after. The order is a function of the lists alone, and pairs
+// that do not touch push exactly zero, so sums are bit-identical for any thread count and
+// skin. Rebuilt with the lists.
+struct DiscRuns {
+  std::vector<std::int32_t> start;   // disc k's run: source[start[k] .. start[k + 1])
+  std::vector<std::int32_t> source;  // index into PairContacts::fx, fy, torque
+};
+
 class NeighborSearch {
  public:
   // Rebuilds both lists for the current positions, keeping the history of pairs present before
   // and after. `reach` is the skin: pairs with gap < skin are listed. Each contact keeps
   // `history_width` doubles of history (the contact model's).
   void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
-               int threads, int history_width, PairContacts& pairs, WallContacts& walls);
+               int threads, int history_width, PairContacts& pairs, WallContacts& walls,
+               DiscRuns& runs);
 
  private:
   std::vector<std::int32_t> cell_start_, cell_disc_;

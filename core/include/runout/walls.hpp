@@ -112,7 +112,7 @@ inline WallTouch wall_touch(const Segment& s, const Eigen::Vector2d& p, double r
 }
 
 // Whether the neighbour list must hold (disc, segment): some contact can form before the disc
-// has moved or grown by skin / 2 (SPEC §5).
+// has moved by the skin less twice its growth (SPEC §5; World::step).
 inline bool wall_candidate(const Segment& s, const Eigen::Vector2d& p, double radius, double skin) {
   const double distance = distance_to(s, p);
   if (distance < radius + skin) return true;

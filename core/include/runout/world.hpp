@@ -149,14 +149,15 @@ class World {
   NeighborSearch search_;
   PairContacts pairs_;
   WallContacts wall_contacts_;
+  DiscRuns runs_;  // each disc's contacts in summing order (neighbor_list.hpp)
   StepProfile profile_;
   Dissipation ledger_;
   double time_ = 0;
   std::int64_t steps_ = 0;
 
-  // Verlet-list validity (SPEC §5): rebuild once displacement + growth reaches skin / 2.
+  // Verlet-list validity (SPEC §5): see World::step.
   std::vector<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
-  double max_displacement2_ = 0;
+  double list_drift_ = 0;  // how far the lists are from stale, in the units of the skin
   double max_growth_ = 0;
   bool lists_valid_ = false;
   double guard_radius_scale_ = 1.0;
