@@ -111,7 +111,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       const int t = omp_get_thread_num();
       const auto [lo, hi] = block(n, t, omp_get_num_threads());
       auto& out = thread_j_[t];  // (lower, higher) index pairs, flattened
-      out.clear();
+      std::size_t found = 0;
       // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
       // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
       // A grid row's cells are contiguous in cell_disc_, so each row is one run of discs.
@@ -124,20 +124,27 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         const std::int32_t gx0 = cell_of(xa - reach, xmin, ncx), gx1 = cell_of(xa + reach, xmin, ncx);
         const std::int32_t gy0 = cell_of(ya - reach, ymin, ncy), gy1 = cell_of(ya + reach, ymin, ncy);
         for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
+          const std::int32_t q_begin = cell_start_[gy * ncx + gx0];
           const std::int32_t q_end = cell_start_[gy * ncx + gx1 + 1];
-          for (std::int32_t q = cell_start_[gy * ncx + gx0]; q < q_end; ++q) {
+          if (out.size() < found + 2 * static_cast<std::size_t>(q_end - q_begin))
+            out.resize(2 * out.size() + 2 * static_cast<std::size_t>(q_end - q_begin));
+          std::int32_t* __restrict next = out.data() + found;
+          // Every candidate is written and kept or overwritten by the next one: no branch on
+          // the outcome (about half the candidates are kept, so a branch mispredicts often).
+          for (std::int32_t q = q_begin; q < q_end; ++q) {
             const std::int32_t b = cell_disc_[q];
             const double rb = p.radius[b];
-            if (rb > ra || (rb == ra && b <= a)) continue;  // found from b
+            const bool from_here = rb < ra || (rb == ra && b > a);  // else found from b
             const double dx = p.x[b] - xa, dy = p.y[b] - ya;
             const double cut = ra + rb + skin;
-            if (dx * dx + dy * dy < cut * cut) {
-              out.push_back(std::min(a, b));
-              out.push_back(std::max(a, b));
-            }
+            next[0] = std::min(a, b);
+            next[1] = std::max(a, b);
+            next += 2 * (from_here & (dx * dx + dy * dy < cut * cut));
           }
+          found = static_cast<std::size_t>(next - out.data());
         }
       }
+      out.resize(found);
     }
     // Binned by a counting sort in parallel: each thread counts its pairs per row, each row's
     // start is the sum over threads, and each thread writes its pairs from its own offset in

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -63,12 +64,16 @@ inline SegmentProjection project(const Segment& s, const Eigen::Vector2d& p) {
   return out;
 }
 
-// Distance from p to the segment including both ends (geometry, ignores caps and sides).
-inline double distance_to(const Segment& s, const Eigen::Vector2d& p) {
+// Squared distance from p to the segment including both ends (geometry, ignores caps and
+// sides), and the distance.
+inline double squared_distance_to(const Segment& s, const Eigen::Vector2d& p) {
   const Eigen::Vector2d ab = s.b - s.a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (s.a + t * ab - p).norm();
+  return (s.a + t * ab - p).squaredNorm();
+}
+inline double distance_to(const Segment& s, const Eigen::Vector2d& p) {
+  return std::sqrt(squared_distance_to(s, p));
 }
 
 // How a segment meets a disc centre: the contact normal (unit, from the centre towards the
@@ -114,10 +119,13 @@ inline WallTouch wall_touch(const Segment& s, const Eigen::Vector2d& p, double r
 // Whether the neighbour list must hold (disc, segment): some contact can form before the disc
 // has moved by the skin less twice its growth (SPEC §5; World::step).
 inline bool wall_candidate(const Segment& s, const Eigen::Vector2d& p, double radius, double skin) {
-  const double distance = distance_to(s, p);
-  if (distance < radius + skin) return true;
+  // Squared distances: the search asks this of every disc and segment at each rebuild.
+  const double distance2 = squared_distance_to(s, p);
+  const double front = radius + skin;
+  if (distance2 < front * front) return true;
   if (!s.one_sided() || (p - s.a).dot(s.inside) >= 0) return false;
-  return distance < s.behind_reach * (behind_depth(radius) + skin);
+  const double behind = s.behind_reach * (behind_depth(radius) + skin);
+  return distance2 < behind * behind;
 }
 
 // Splits wall polylines into segments: sides, point-contact ends and the shares of the outside
