@@ -59,10 +59,18 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.i[q]].push_back(q);
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(np + q);
         ASSERT_EQ(runs.start.size(), p.size() + 1);
-        for (std::size_t k = 0; k < p.size(); ++k)
+        for (std::size_t k = 0; k < p.size(); ++k) {
           run[k].assign(runs.source.begin() + runs.start[k], runs.source.begin() + runs.start[k + 1]);
+          const auto len = static_cast<std::int32_t>(expected_run[k].size());
+          EXPECT_EQ(runs.start[k + 1] - runs.start[k], (len + DiscRuns::kGroup - 1) / DiscRuns::kGroup * DiscRuns::kGroup);
+          // The padding reads the push that is always zero.
+          while (run[k].size() > expected_run[k].size()) {
+            EXPECT_EQ(run[k].back(), 2 * np);
+            run[k].pop_back();
+          }
+        }
         EXPECT_EQ(run, expected_run);
-        EXPECT_EQ(runs.start.back(), 2 * np);
+        EXPECT_EQ(pairs.fx.size(), std::size_t(2 * np + 1));
       }
     }
   }

@@ -27,8 +27,8 @@ void for_blocks(std::int64_t n, int threads, const Body& body) {
 }
 
 // The sum of the contact forces and torques on each disc of [lo, hi) plus gravity, as
-// accelerations (eqs. 2.10–2.11): its run of pair pushes (one loop, so one exit to mispredict
-// per disc), then its walls, then F / m + g. The additions are 0 + row + incoming + walls in
+// accelerations (eqs. 2.10–2.11): its run of pair pushes a group at a time (DiscRuns), then
+// its walls, then F / m + g. The additions are 0 + row + incoming + walls in
 // that order whatever the thread count.
 void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns& runs,
                    std::int64_t lo, std::int64_t hi, double gx, double gy,
@@ -41,9 +41,11 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
   const std::int32_t* __restrict source = runs.source.data();
   for (std::int64_t k = lo; k < hi; ++k) {
     double sx = 0, sy = 0, st = 0;
-    for (std::int32_t s = start[k]; s < start[k + 1]; ++s) {
-      const std::int32_t e = source[s];
-      sx += fx[e]; sy += fy[e]; st += torque[e];
+    for (std::int32_t s = start[k]; s < start[k + 1]; s += DiscRuns::kGroup) {
+      for (std::int32_t g = 0; g < DiscRuns::kGroup; ++g) {  // in order: unrolled, not reordered
+        const std::int32_t e = source[s + g];
+        sx += fx[e]; sy += fy[e]; st += torque[e];
+      }
     }
     ax[k] = sx; ay[k] = sy; alpha[k] = st;
   }

@@ -223,7 +223,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   const size_t np = pairs.i.size();
   pairs.history_width = history_width;
   pairs.history.assign(np * history_width, 0.0);
-  pairs.fx.assign(2 * np, 0); pairs.fy.assign(2 * np, 0); pairs.torque.assign(2 * np, 0);
+  pairs.fx.assign(2 * np + 1, 0); pairs.fy.assign(2 * np + 1, 0); pairs.torque.assign(2 * np + 1, 0);
   carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.history, old_pairs_.history_width,
                 pairs.row_start, pairs.j, pairs.history, history_width, n, threads);
   const size_t nw = walls.disc.size();
@@ -235,12 +235,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
                 history_width, n, threads);
 
   // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----
-  runs.start.assign(static_cast<size_t>(n) + 1, 0);
-  for (size_t q = 0; q < np; ++q) ++runs.start[pairs.j[q] + 1];
-  for (std::int32_t k = 0; k < n; ++k)
-    runs.start[k + 1] += runs.start[k] + (pairs.row_start[k + 1] - pairs.row_start[k]);
-  runs.source.resize(2 * np);
-  cursor_.resize(n);
+  // Padded to whole groups with the always-zero push at [2 np].
+  const auto zero = static_cast<std::int32_t>(2 * np);
+  cursor_.assign(static_cast<size_t>(n), 0);
+  for (size_t q = 0; q < np; ++q) ++cursor_[pairs.j[q]];
+  runs.start.resize(static_cast<size_t>(n) + 1);
+  runs.start[0] = 0;
+  for (std::int32_t k = 0; k < n; ++k) {
+    const std::int32_t len = pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k];
+    runs.start[k + 1] = runs.start[k] + (len + DiscRuns::kGroup - 1) / DiscRuns::kGroup * DiscRuns::kGroup;
+  }
+  runs.source.assign(runs.start[n], zero);
   for (std::int32_t k = 0; k < n; ++k) {
     std::int32_t at = runs.start[k];
     for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q) runs.source[at++] = q;

@@ -21,7 +21,8 @@ struct PairContacts {
   std::vector<double> history;
   int history_width = 0;
   // This step's push of pair q on i at [q], and on j at [size() + q] (the force opposite,
-  // the torque the law gives j), so each disc's sum reads one array (DiscRuns).
+  // the torque the law gives j), so each disc's sum reads one array (DiscRuns); [2 size()]
+  // is always zero.
   std::vector<double> fx, fy, torque;
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
 
@@ -43,8 +44,12 @@ struct WallContacts {
 // by j), then the pairs where it is j (by i), as indices into the pushes of PairContacts; its
 // walls (WallContacts rows) come after. The order is a function of the lists alone, and pairs
 // that do not touch push exactly zero, so sums are bit-identical for any thread count and
-// skin. Rebuilt with the lists.
+// skin. A run is padded to whole groups of kGroup with the push that is always zero (a sum
+// started at +0 is never -0, so adding +0 changes no bit): the sum then takes a group per
+// loop turn, and most discs need one turn, so the loop's exit is predictable. Rebuilt with
+// the lists.
 struct DiscRuns {
+  static constexpr std::int32_t kGroup = 4;
   std::vector<std::int32_t> start;   // disc k's run: source[start[k] .. start[k + 1])
   std::vector<std::int32_t> source;  // index into PairContacts::fx, fy, torque
 };
