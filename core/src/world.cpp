@@ -22,9 +22,9 @@ double seconds_since(Clock::time_point t0) {
 World::World(Particles particles, std::vector<Segment> segments, ContactTable table,
              StepSettings settings)
     : particles_(std::move(particles)), segments_(std::move(segments)),
-      table_(std::move(table)), settings_(settings), frictional_(table_.frictional()) {
+      table_(std::move(table)), settings_(settings) {
   settings_.threads = std::clamp(settings_.threads, 1, kMaxThreads);
-  settings_.contact.frictional = frictional_;
+  settings_.contact.frictional = table_.frictional();
   dispatch(settings_.contact, [&](auto model) {
     using Model = decltype(model);
     history_width_ = Model::kHistory;

@@ -95,7 +95,7 @@ class World {
   // The largest impact overlap the guard has seen, as a share of the pass-through depth.
   double peak_impact_overlap() const { return peak_impact_overlap_; }
   // False when mu = 0 for every contact: no tangential history is kept or computed.
-  bool frictional() const { return frictional_; }
+  bool frictional() const { return settings_.contact.frictional; }
   // Doubles of history per contact the contact model keeps (contact.hpp).
   int history_width() const { return history_width_; }
   void set_track_energy(bool on) { settings_.track_energy = on; }
@@ -144,7 +144,6 @@ class World {
   std::vector<Segment> segments_;
   ContactTable table_;
   StepSettings settings_;
-  bool frictional_;  // some contact has mu > 0: tangential springs are kept (SPEC §2)
   int history_width_ = 0, normal_history_width_ = 0;  // doubles per contact (contact.hpp)
   NeighborSearch search_;
   PairContacts pairs_;
