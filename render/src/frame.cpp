@@ -464,8 +464,8 @@ DrawStyle FrameMaker::style(const FramePlan& plan) const {
   return style;
 }
 
-Image FrameMaker::draw(const FramePlan& plan) {
-  Image img = gl_->draw(plan.view, plan.discs, plan.walls, style(plan));
+Image& FrameMaker::draw(const FramePlan& plan) {
+  Image& img = gl_->draw(plan.view, plan.discs, plan.walls, style(plan));
   if (options_.overlays) {
     ImageCanvas canvas(img, text_);
     draw_overlays(canvas, plan);

@@ -5,6 +5,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -15,7 +16,8 @@ namespace runout::render {
 namespace {
 
 // Discs whose centre is outside the viewport would be culled whole as point sprites, so the
-// drawing surface extends this far beyond the frame on every side (shared notes).
+// viewport extends this far beyond the frame on every side (shared notes); OpenGL draws only
+// what falls on the frame itself.
 constexpr int kGuard = 16;
 constexpr float kMaxPointSize = 255.0f;
 
@@ -51,20 +53,31 @@ GLuint link(const char* vert, const char* frag, const char* name) {
   return p;
 }
 
+// OpenGL blends in premultiplied alpha; a PNG stores straight alpha.
+void unpremultiply(Image& image) {
+  std::uint8_t* p = image.rgba.data();
+  for (std::size_t k = 0; k < image.rgba.size(); k += 4) {
+    const int alpha = p[k + 3];
+    if (alpha > 0 && alpha < 255)
+      for (int c = 0; c < 3; ++c) p[k + c] = static_cast<std::uint8_t>(std::min(255, (p[k + c] * 255 + alpha / 2) / alpha));
+  }
+}
+
 }  // namespace
 
 struct GlRenderer::Impl {
   OSMesaContext context = nullptr;
-  std::vector<std::uint8_t> surface;  // (w + 2 guard) x (h + 2 guard) RGBA, top row first
-  int surface_w = 0, surface_h = 0;
+  // OSMesa's colour buffer is the frame itself: OpenGL's pixels land where the overlays and the
+  // encoders read them, with no copy out of a larger surface and no new frame per draw.
+  Image frame;
   GLuint disc_program = 0, segment_program = 0;
   GLuint vao = 0, disc_buffers[5] = {}, quad_corner_buffer = 0, segment_buffer = 0;
   std::vector<float> scratch;
 
   void make_current() {
-    if (!OSMesaMakeCurrent(context, surface.data(), GL_UNSIGNED_BYTE, surface_w, surface_h))
+    if (!OSMesaMakeCurrent(context, frame.rgba.data(), GL_UNSIGNED_BYTE, frame.width, frame.height))
       throw RenderError("OpenGL: OSMesaMakeCurrent failed");
-    OSMesaPixelStore(OSMESA_Y_UP, 0);  // rows top to bottom in `surface`, at no cost
+    OSMesaPixelStore(OSMESA_Y_UP, 0);  // rows top to bottom, as Image has them, at no cost
   }
 };
 
@@ -80,9 +93,7 @@ GlRenderer::GlRenderer(int width, int height) : impl_(std::make_unique<Impl>()),
   if (!m.context)
     throw RenderError("OpenGL: cannot create an OSMesa core-profile 3.3 context "
                       "(is libosmesa6 installed and Mesa 17 or newer?)");
-  m.surface_w = width + 2 * kGuard;
-  m.surface_h = height + 2 * kGuard;
-  m.surface.assign(static_cast<std::size_t>(m.surface_w) * m.surface_h * 4, 0);
+  m.frame = Image::zeroed(width, height);
   m.make_current();
   m.disc_program = link(kDiscVert, kDiscFrag, "disc");
   m.segment_program = link(kSegmentVert, kSegmentFrag, "segment");
@@ -99,21 +110,23 @@ GlRenderer::~GlRenderer() {
   if (impl_ && impl_->context) OSMesaDestroyContext(impl_->context);
 }
 
-Image GlRenderer::draw(const View& view, const DiscBatch& discs,
-                       const std::vector<SegmentLine>& walls, const DrawStyle& style) {
+Image& GlRenderer::draw(const View& view, const DiscBatch& discs,
+                        const std::vector<SegmentLine>& walls, const DrawStyle& style) {
   auto& m = *impl_;
   m.make_current();
-  glViewport(0, 0, m.surface_w, m.surface_h);
+  // The frame and a guard band around it; the band is outside the colour buffer.
+  const int viewport_w = width_ + 2 * kGuard, viewport_h = height_ + 2 * kGuard;
+  glViewport(-kGuard, -kGuard, viewport_w, viewport_h);
   const float a = style.background.a / 255.0f;
   glClearColor(style.background.r / 255.0f * a, style.background.g / 255.0f * a,
                style.background.b / 255.0f * a, a);
   glClear(GL_COLOR_BUFFER_BIT);
   glBindVertexArray(m.vao);
 
-  // World point at the surface's lower-left pixel, guard band included.
+  // World point at the viewport's lower-left pixel, guard band included.
   const float origin[2] = {static_cast<float>(view.x0 - kGuard / view.scale),
                            static_cast<float>(view.y0 - kGuard / view.scale)};
-  const float viewport[2] = {static_cast<float>(m.surface_w), static_cast<float>(m.surface_h)};
+  const float viewport[2] = {static_cast<float>(viewport_w), static_cast<float>(viewport_h)};
   const float scale = static_cast<float>(view.scale);
 
   // ---- walls ----
@@ -202,24 +215,11 @@ Image GlRenderer::draw(const View& view, const DiscBatch& discs,
       glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * n));
     }
   }
-  glFinish();  // OSMesa copies the frame into `surface` here
+  glFinish();  // OSMesa copies the frame into `frame` here
   if (const GLenum err = glGetError(); err != GL_NO_ERROR)
     throw RenderError("OpenGL error " + std::to_string(err) + " while drawing a frame");
-
-  // The frame is the surface without its guard band; un-premultiply translucent pixels.
-  Image out = Image::zeroed(width_, height_);
-  for (int y = 0; y < height_; ++y) {
-    const std::uint8_t* src = &m.surface[(static_cast<std::size_t>(y + kGuard) * m.surface_w + kGuard) * 4];
-    std::uint8_t* dst = &out.rgba[static_cast<std::size_t>(y) * width_ * 4];
-    std::memcpy(dst, src, static_cast<std::size_t>(width_) * 4);
-    if (style.background.a < 255)
-      for (int x = 0; x < width_; ++x) {
-        const int alpha = dst[4 * x + 3];
-        if (alpha > 0 && alpha < 255)
-          for (int c = 0; c < 3; ++c) dst[4 * x + c] = static_cast<std::uint8_t>(std::min(255, (dst[4 * x + c] * 255 + alpha / 2) / alpha));
-      }
-  }
-  return out;
+  if (style.background.a < 255) unpremultiply(m.frame);
+  return m.frame;
 }
 
 }  // namespace runout::render

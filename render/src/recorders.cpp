@@ -32,13 +32,13 @@ MovieRecorder::~MovieRecorder() = default;
 
 // On the helper thread: the picture, then the PNG and the video.
 void MovieRecorder::draw(const FramePlan& plan) {
-  Image img = maker_.draw(plan);
+  const Image& img = maker_.draw(plan);
   if (!png_dir_.empty()) {
     char name[48];
     std::snprintf(name, sizeof name, "/frame_%06ld.png", drawn_);
     write_png(png_dir_ + name, img, keep_alpha_);
   }
-  if (video_) video_->write(std::move(img));
+  if (video_) video_->write(img);
   ++drawn_;
 }
 

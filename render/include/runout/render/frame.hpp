@@ -59,10 +59,10 @@ class FrameMaker {
   FrameMaker(const FrameOptions& options, const SceneDef& scene, const SceneSetup& setup,
              const World* first = nullptr);
   // plan() reads the World and moves the camera; draw() makes the picture (any one thread at a
-  // time). make() is both.
+  // time) in the maker's own buffer, valid until its next draw. make() is both.
   FramePlan plan(const World& world, double t_star);
-  Image draw(const FramePlan& plan);
-  Image make(const World& world, double t_star) { return draw(plan(world, t_star)); }
+  Image& draw(const FramePlan& plan);
+  Image& make(const World& world, double t_star) { return draw(plan(world, t_star)); }
   // The same picture as a PDF (cairo) or SVG file's bytes: the same discs, colours, walls and
   // overlays, drawn as shapes and text (vector.cpp).
   std::string draw_vector(const FramePlan& plan, PictureFormat format);

@@ -64,9 +64,10 @@ class GlRenderer {
   void set_method(DiscMethod m) { method_ = m; }
   DiscMethod method() const { return method_; }
 
-  // Draws one frame and returns it (top row first). Discs larger than the point-size limit
-  // (255 px) are drawn as quads whatever the method.
-  Image draw(const View& view, const DiscBatch& discs, const std::vector<SegmentLine>& walls,
+  // Draws one frame and returns it (top row first): the renderer's own buffer, valid until the
+  // next draw, which the caller may draw over (the overlays) or copy. Discs larger than the
+  // point-size limit (255 px) are drawn as quads whatever the method.
+  Image& draw(const View& view, const DiscBatch& discs, const std::vector<SegmentLine>& walls,
              const DrawStyle& style);
 
  private:
