@@ -82,6 +82,23 @@ TEST(DiscFacts, DiscCentredOutsideTheFrameStillShowsItsEdge) {
   EXPECT_EQ(img.at(2, 50), (Rgba{0, 0, 0, 255}));
 }
 
+// Text and rectangles blend in integers; the bytes must be those of the blend in double.
+TEST(Blend, CoverageInIntegersEqualsTheBlendInDouble) {
+  Image a(256, 256), b(256, 256);
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x) a.set(x, y, {std::uint8_t(x), std::uint8_t(y), std::uint8_t(x ^ y), std::uint8_t(255 - x)});
+  b = a;
+  for (const Rgba c : {Rgba{30, 30, 30, 255}, Rgba{255, 255, 255, 210}, Rgba{213, 94, 0, 1}, Rgba{0, 114, 178, 128}})
+    for (int coverage = 1; coverage < 256; coverage += 3) {
+      for (int y = 0; y < 256; y += 5)
+        for (int x = 0; x < 256; ++x) {
+          a.blend(x, y, c, coverage / 255.0);
+          b.blend_coverage(x, y, c, coverage);
+        }
+      ASSERT_TRUE(a.rgba == b.rgba) << "colour alpha " << int(c.a) << ", coverage " << coverage;
+    }
+}
+
 TEST(Compare, CatchesAnAlteredFrameAndToleratesEdges) {
   GlRenderer gl(160, 90);
   DiscBatch discs;

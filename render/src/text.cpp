@@ -78,7 +78,7 @@ int TextRenderer::draw(Image& image, int x, int y, std::string_view utf8, int pi
     for (int gy = 0; gy < g.height; ++gy)
       for (int gx = 0; gx < g.width; ++gx) {
         const int cov = g.coverage[static_cast<std::size_t>(gy) * g.width + gx];
-        if (cov) image.blend(pen + g.left + gx, y - g.top + gy, colour, cov / 255.0);
+        if (cov) image.blend_coverage(pen + g.left + gx, y - g.top + gy, colour, cov);
       }
     pen += g.advance;
   }
