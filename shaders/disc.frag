@@ -1,9 +1,10 @@
 #version 330 core
 // Analytic anti-aliased disc: coverage from the distance to the edge in pixels. Optional thin
 // outline (a darker rim) and a spoke from the centre showing the rotation angle.
-in vec4 v_colour;
-in float v_radius_px;
-in float v_angle;
+// One value per disc: flat, so llvmpipe sets up no interpolation for them.
+flat in vec4 v_colour;
+flat in float v_radius_px;
+flat in float v_angle;
 in vec2 v_local_px;
 
 uniform bool u_sprites;

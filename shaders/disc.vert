@@ -12,9 +12,10 @@ uniform float u_scale;    // pixels per metre
 uniform vec2 u_viewport;  // viewport size in pixels
 uniform bool u_sprites;
 
-out vec4 v_colour;
-out float v_radius_px;
-out float v_angle;
+// One value per disc: flat, so llvmpipe sets up no interpolation for them.
+flat out vec4 v_colour;
+flat out float v_radius_px;
+flat out float v_angle;
 out vec2 v_local_px;  // quads: offset from the centre in pixels
 
 void main() {
