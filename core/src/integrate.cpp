@@ -12,18 +12,33 @@ namespace runout::phases {
 
 namespace {
 
-// Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread.
-template <class Body>
-void for_blocks(std::int64_t n, int threads, const Body& body) {
+// Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread; block t
+// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = n).
+template <class Body, class Boundary>
+void for_blocks(std::int64_t n, int threads, const Body& body, const Boundary& boundary) {
   if (threads <= 1) {
     body(0, n, 0);
     return;
   }
 #pragma omp parallel num_threads(threads)
   {
-    const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
-    body(n * t / T, n * (t + 1) / T, static_cast<int>(t));
+    const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    body(boundary(t, T), boundary(t + 1, T), t);
   }
+}
+
+// The first disc of block t of T when the work of disc k is its run's slots plus one (its
+// update): large discs have runs several times longer than small ones and gather where the
+// flow has segregated them, so equal numbers of discs would leave one thread waiting.
+std::int64_t work_boundary(const DiscRuns& runs, std::int64_t n, int t, int T) {
+  if (t >= T) return n;
+  const std::int64_t total = runs.start[n] + n, goal = total * t / T;
+  std::int64_t lo = 0, hi = n;  // first k with start[k] + k >= goal
+  while (lo < hi) {
+    const std::int64_t mid = (lo + hi) / 2;
+    if (runs.start[mid] + mid < goal) lo = mid + 1; else hi = mid;
+  }
+  return lo;
 }
 
 // The sum of the contact forces and torques on each disc of [lo, hi) plus gravity, as
@@ -123,6 +138,10 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
   const StepSettings& st = step.settings;
   const auto n = static_cast<std::int64_t>(p.size());
   Motion part[kMaxThreads];
+  const bool runs_ready = runs.start.size() == static_cast<std::size_t>(n) + 1;
+  auto boundary = [&](int t, int T) {
+    return runs_ready ? work_boundary(runs, n, t, T) : n * t / T;
+  };
   for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) {
     if (gather) {
       accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
@@ -134,7 +153,7 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
     part[t] = kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
                          p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(),
                          p.alpha.data(), x_at_rebuild.data(), y_at_rebuild.data());
-  });
+  }, boundary);
   Motion total = part[0];
   for (int t = 1; t < st.threads; ++t) total = Motion::merge(total, part[t]);
   return total;
