@@ -156,7 +156,7 @@ class World {
 
   // Verlet-list validity (SPEC §5): see World::step.
   std::vector<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
-  double list_drift_ = 0;  // how far the lists are from stale, in the units of the skin
+  double list_drift_ = 0;  // bound on how much closer any two bodies came since the rebuild (m)
   double max_growth_ = 0;
   bool lists_valid_ = false;
   double guard_radius_scale_ = 1.0;
