@@ -53,21 +53,28 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
             if (distance_to(walls[s], {p.x[a], p.y[a]}) < p.radius[a] + skin) wall_expected.insert({int(a), int(s)});
         EXPECT_EQ(wall_found, wall_expected);
         // Each disc's run: the pairs where it is i (by j), then where it is j (by i), as
-        // pushes on i at [q] and on j at [size + q]; every push read once.
-        std::vector<std::vector<std::int32_t>> expected_run(p.size()), run(p.size());
+        // pushes on i at [q] and on j at [size + q], in the lane of its slice (disc k: slot s
+        // at slice_start[k / L] + L s + k % L), the slice as long as its longest run and the
+        // padding reading the push that is always zero; every push read once.
+        constexpr std::int32_t L = DiscRuns::kSlice;
         const auto np = static_cast<std::int32_t>(pairs.size());
+        std::vector<std::vector<std::int32_t>> expected_run(p.size()), run(p.size());
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.i[q]].push_back(q);
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(np + q);
-        ASSERT_EQ(runs.start.size(), p.size() + 1);
-        for (std::size_t k = 0; k < p.size(); ++k) {
-          run[k].assign(runs.source.begin() + runs.start[k], runs.source.begin() + runs.start[k + 1]);
-          const auto len = static_cast<std::int32_t>(expected_run[k].size());
-          EXPECT_EQ(runs.start[k + 1] - runs.start[k], (len + DiscRuns::kGroup - 1) / DiscRuns::kGroup * DiscRuns::kGroup);
-          // The padding reads the push that is always zero.
-          while (run[k].size() > expected_run[k].size()) {
-            EXPECT_EQ(run[k].back(), 2 * np);
-            run[k].pop_back();
+        ASSERT_EQ(runs.slices(), (p.size() + L - 1) / L);
+        ASSERT_EQ(runs.source.size(), std::size_t(runs.slice_start.back()));
+        for (std::size_t g = 0; g < runs.slices(); ++g) {
+          const std::int32_t longest = (runs.slice_start[g + 1] - runs.slice_start[g]) / L;
+          std::size_t expected_longest = 0;
+          for (std::size_t k = g * L; k < (g + 1) * L; ++k) {
+            if (k < p.size()) expected_longest = std::max(expected_longest, expected_run[k].size());
+            for (std::int32_t s = 0; s < longest; ++s) {
+              const std::int32_t e = runs.source[runs.slice_start[g] + L * s + k % L];
+              if (k < p.size() && std::size_t(s) < expected_run[k].size()) run[k].push_back(e);
+              else EXPECT_EQ(e, 2 * np) << "padding";
+            }
           }
+          EXPECT_EQ(std::size_t(longest), expected_longest);
         }
         EXPECT_EQ(run, expected_run);
         EXPECT_EQ(pairs.fx.size(), std::size_t(2 * np + 1));

@@ -171,17 +171,19 @@ struct Kernel {
 // Runs a kernel over [0, n). Forces are per contact, so any split gives the same bits; the
 // ledger's sums are taken over fixed blocks of contacts added in order, so they are the same
 // bits for every thread count too (a resumed run may use another, SPEC §8).
-template <class K>
+// Without the ledger, thread t takes the contacts from split(t, T) (split(0, T) = 0,
+// split(T, T) = n).
+template <class K, class Split>
 PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
-             std::vector<PassSums>& blocks) {
+             std::vector<PassSums>& blocks, const Split& split) {
   PassSums total;
   if (!ledger) {
     if (threads == 1 || n < 64) return kernel(0, n);
     PassSums part[kMaxThreads] = {};
 #pragma omp parallel num_threads(threads)
     {
-      const std::int64_t t = omp_get_thread_num(), T = omp_get_num_threads();
-      part[t] = kernel(n * t / T, n * (t + 1) / T);
+      const int t = omp_get_thread_num(), T = omp_get_num_threads();
+      part[t] = kernel(split(t, T), split(t + 1, T));
     }
     for (int t = 0; t < threads; ++t) total.worst = std::max(total.worst, part[t].worst);
     return total;
@@ -216,7 +218,8 @@ double seconds_since(Clock::time_point t0) {
 
 template <class Model, bool kLedger>
 PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
-                     WallContacts& walls, std::vector<PassSums>& blocks, StepProfile& profile) {
+                     WallContacts& walls, const DiscRuns& runs, std::vector<PassSums>& blocks,
+                     StepProfile& profile) {
   const StepSettings& st = step.settings;
   auto t0 = Clock::now();
   const auto pair_law = Model::tables(step.table.pair);
@@ -225,7 +228,13 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque.data()};
-  PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks);
+  const auto n = static_cast<std::int64_t>(p.size());
+  // The pairs whose i is in thread t's block of discs (disc_block_start).
+  auto pair_split = [&](int t, int T) {
+    return static_cast<std::int64_t>(pairs.row_start[disc_block_start(runs, n, t, T)]);
+  };
+  PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks,
+                      pair_split);
   profile.pair_forces += seconds_since(t0);
   t0 = Clock::now();
   const auto wall_law = Model::tables(step.table.wall);
@@ -234,7 +243,9 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
                                               walls.torque.data()};
-  const PassSums w = run(wk, static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks);
+  const auto nw = static_cast<std::int64_t>(walls.size());
+  const PassSums w = run(wk, nw, st.threads, kLedger, blocks,
+                         [nw](int t, int T) { return nw * t / T; });
   profile.wall_forces += seconds_since(t0);
   sums.worst = std::max(sums.worst, w.worst);
   sums.loss_normal += w.loss_normal;
@@ -261,14 +272,14 @@ void energy_of(const Source& source, const typename Model::Tables& tables,
 }  // namespace
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, std::vector<PassSums>& ledger_blocks,
-                        StepProfile& profile) {
+                        WallContacts& walls, const DiscRuns& runs,
+                        std::vector<PassSums>& ledger_blocks, StepProfile& profile) {
   PassSums sums;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
     sums = step.settings.track_energy
-               ? forces_with<Model, true>(step, p, pairs, walls, ledger_blocks, profile)
-               : forces_with<Model, false>(step, p, pairs, walls, ledger_blocks, profile);
+               ? forces_with<Model, true>(step, p, pairs, walls, runs, ledger_blocks, profile)
+               : forces_with<Model, false>(step, p, pairs, walls, runs, ledger_blocks, profile);
   });
   return sums;
 }

@@ -27,42 +27,31 @@ void for_blocks(std::int64_t n, int threads, const Body& body, const Boundary& b
   }
 }
 
-// The first disc of block t of T when the work of disc k is its run's slots plus one (its
-// update): large discs have runs several times longer than small ones and gather where the
-// flow has segregated them, so equal numbers of discs would leave one thread waiting.
-std::int64_t work_boundary(const DiscRuns& runs, std::int64_t n, int t, int T) {
-  if (t >= T) return n;
-  const std::int64_t total = runs.start[n] + n, goal = total * t / T;
-  std::int64_t lo = 0, hi = n;  // first k with start[k] + k >= goal
-  while (lo < hi) {
-    const std::int64_t mid = (lo + hi) / 2;
-    if (runs.start[mid] + mid < goal) lo = mid + 1; else hi = mid;
-  }
-  return lo;
-}
-
 // The sum of the contact forces and torques on each disc of [lo, hi) plus gravity, as
-// accelerations (eqs. 2.10–2.11): its run of pair pushes a group at a time (DiscRuns), then
-// its walls, then F / m + g. The additions are 0 + row + incoming + walls in
-// that order whatever the thread count.
+// accelerations (eqs. 2.10–2.11): its run of pair pushes (a slice's discs side by side, one
+// lane each, so each disc's additions stay in its run's order), then its walls, then
+// F / m + g. The additions are 0 + row + incoming + walls in that order whatever the thread
+// count. `lo` starts a slice.
 void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns& runs,
                    std::int64_t lo, std::int64_t hi, double gx, double gy,
                    const double* __restrict inv_mass, const double* __restrict inv_inertia,
                    double* __restrict ax, double* __restrict ay, double* __restrict alpha) {
+  constexpr std::int64_t L = DiscRuns::kSlice;
   const double* __restrict fx = c.fx.data();
   const double* __restrict fy = c.fy.data();
   const double* __restrict torque = c.torque.data();
-  const std::int32_t* __restrict start = runs.start.data();
-  const std::int32_t* __restrict source = runs.source.data();
-  for (std::int64_t k = lo; k < hi; ++k) {
-    double sx = 0, sy = 0, st = 0;
-    for (std::int32_t s = start[k]; s < start[k + 1]; s += DiscRuns::kGroup) {
-      for (std::int32_t g = 0; g < DiscRuns::kGroup; ++g) {  // in order: unrolled, not reordered
-        const std::int32_t e = source[s + g];
-        sx += fx[e]; sy += fy[e]; st += torque[e];
+  const std::int32_t* __restrict slice_start = runs.slice_start.data();
+  const std::int32_t* __restrict src = runs.source.data();
+  for (std::int64_t g = lo / L; g * L < hi; ++g) {
+    double sx[L] = {}, sy[L] = {}, st[L] = {};
+    for (std::int64_t s = slice_start[g]; s < slice_start[g + 1]; s += L)
+      for (std::int64_t l = 0; l < L; ++l) {
+        const std::int32_t e = src[s + l];
+        sx[l] += fx[e]; sy[l] += fy[e]; st[l] += torque[e];
       }
+    for (std::int64_t l = 0; l < L && g * L + l < hi; ++l) {
+      ax[g * L + l] = sx[l]; ay[g * L + l] = sy[l]; alpha[g * L + l] = st[l];
     }
-    ax[k] = sx; ay[k] = sy; alpha[k] = st;
   }
   // Few discs touch a wall: adding their contacts after all rows keeps each disc's order
   // (walls last, by segment) without a loop per disc.
@@ -121,6 +110,23 @@ Motion kick_drift(std::int64_t lo, std::int64_t hi, double kick, double drift,
 
 }  // namespace
 
+// The first disc of block t of T when the work of a slice is its slots plus one per disc (its
+// update): large discs have runs several times longer than small ones and gather where the
+// flow has segregated them, so equal numbers of discs would leave one thread waiting. Blocks
+// start at whole slices (DiscRuns).
+std::int64_t disc_block_start(const DiscRuns& runs, std::int64_t n, int t, int T) {
+  if (t >= T) return n;
+  constexpr std::int64_t L = DiscRuns::kSlice;
+  const auto slices = static_cast<std::int64_t>(runs.slices());
+  const std::int64_t total = runs.slice_start[slices] + L * slices, goal = total * t / T;
+  std::int64_t lo = 0, hi = slices;  // first g with slice_start[g] + L g >= goal
+  while (lo < hi) {
+    const std::int64_t mid = (lo + hi) / 2;
+    if (runs.slice_start[mid] + L * mid < goal) lo = mid + 1; else hi = mid;
+  }
+  return std::min(n, L * lo);
+}
+
 Motion Motion::merge(const Motion& a, const Motion& b) {
   return {std::min(a.ux_lo, b.ux_lo), std::max(a.ux_hi, b.ux_hi),
           std::min(a.uy_lo, b.uy_lo), std::max(a.uy_hi, b.uy_hi),
@@ -138,9 +144,9 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
   const StepSettings& st = step.settings;
   const auto n = static_cast<std::int64_t>(p.size());
   Motion part[kMaxThreads];
-  const bool runs_ready = runs.start.size() == static_cast<std::size_t>(n) + 1;
+  const bool runs_ready = runs.slices() == static_cast<std::size_t>((n + DiscRuns::kSlice - 1) / DiscRuns::kSlice);
   auto boundary = [&](int t, int T) {
-    return runs_ready ? work_boundary(runs, n, t, T) : n * t / T;
+    return runs_ready ? disc_block_start(runs, n, t, T) : n * t / T;
   };
   for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) {
     if (gather) {

@@ -219,8 +219,34 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       std::fill(walls.disc.begin() + walls.row_start[k], walls.disc.begin() + walls.row_start[k + 1], k);
   }
 
-  // ---- history and per-step buffers ----
+  // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----
   const size_t np = pairs.i.size();
+  constexpr std::int32_t L = DiscRuns::kSlice;
+  cursor_.assign(static_cast<size_t>(n), 0);
+  for (size_t q = 0; q < np; ++q) ++cursor_[pairs.j[q]];
+  const std::int32_t slices = (n + L - 1) / L;
+  runs.slice_start.resize(static_cast<size_t>(slices) + 1);
+  runs.slice_start[0] = 0;
+  for (std::int32_t g = 0; g < slices; ++g) {
+    std::int32_t longest = 0;
+    for (std::int32_t k = g * L; k < std::min(n, (g + 1) * L); ++k)
+      longest = std::max(longest, pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k]);
+    runs.slice_start[g + 1] = runs.slice_start[g] + L * longest;
+  }
+  // Padding reads the push at [2 np], which the kernel never writes.
+  runs.source.assign(runs.slice_start.back(), static_cast<std::int32_t>(2 * np));
+  auto slot = [&](std::int32_t k, std::int32_t s) { return runs.slice_start[k / L] + L * s + k % L; };
+  for (std::int32_t k = 0; k < n; ++k) {
+    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q)
+      runs.source[slot(k, q - pairs.row_start[k])] = q;
+    cursor_[k] = pairs.row_start[k + 1] - pairs.row_start[k];  // next free slot of k's run
+  }
+  for (size_t q = 0; q < np; ++q) {
+    const std::int32_t k = pairs.j[q];
+    runs.source[slot(k, cursor_[k]++)] = static_cast<std::int32_t>(np + q);
+  }
+
+  // ---- history and per-step buffers ----
   pairs.history_width = history_width;
   pairs.history.assign(np * history_width, 0.0);
   pairs.fx.assign(2 * np + 1, 0); pairs.fy.assign(2 * np + 1, 0); pairs.torque.assign(2 * np + 1, 0);
@@ -233,26 +259,6 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.history,
                 old_walls_.history_width, walls.row_start, walls.segment, walls.history,
                 history_width, n, threads);
-
-  // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----
-  // Padded to whole groups with the always-zero push at [2 np].
-  const auto zero = static_cast<std::int32_t>(2 * np);
-  cursor_.assign(static_cast<size_t>(n), 0);
-  for (size_t q = 0; q < np; ++q) ++cursor_[pairs.j[q]];
-  runs.start.resize(static_cast<size_t>(n) + 1);
-  runs.start[0] = 0;
-  for (std::int32_t k = 0; k < n; ++k) {
-    const std::int32_t len = pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k];
-    runs.start[k + 1] = runs.start[k] + (len + DiscRuns::kGroup - 1) / DiscRuns::kGroup * DiscRuns::kGroup;
-  }
-  runs.source.assign(runs.start[n], zero);
-  for (std::int32_t k = 0; k < n; ++k) {
-    std::int32_t at = runs.start[k];
-    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q) runs.source[at++] = q;
-    cursor_[k] = at;
-  }
-  for (size_t q = 0; q < np; ++q)
-    runs.source[cursor_[pairs.j[q]]++] = static_cast<std::int32_t>(np + q);
 }
 
 }  // namespace runout

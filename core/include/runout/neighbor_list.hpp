@@ -41,17 +41,21 @@ struct WallContacts {
 };
 
 // Each disc's pairs in the order its force sum takes (eqs. 2.10–2.11): its own row (it is i,
-// by j), then the pairs where it is j (by i), as indices into the pushes of PairContacts; its
-// walls (WallContacts rows) come after. The order is a function of the lists alone, and pairs
-// that do not touch push exactly zero, so sums are bit-identical for any thread count and
-// skin. A run is padded to whole groups of kGroup with the push that is always zero (a sum
-// started at +0 is never -0, so adding +0 changes no bit): the sum then takes a group per
-// loop turn, and most discs need one turn, so the loop's exit is predictable. Rebuilt with
-// the lists.
+// by j), then the pairs where it is j (by i); its walls (WallContacts rows) come after. The
+// order is a function of the lists alone, and pairs that do not touch push exactly zero, so
+// sums are bit-identical for any thread count and skin.
+// The runs are laid out kSlice discs side by side (a sliced ELLPACK layout): slice g holds
+// discs kSlice g .. kSlice g + kSlice - 1, slot s of its lane l at
+// slice_start[g] + kSlice s + l, each lane padded to the slice's longest run with the push that
+// is always zero (a sum started at +0 is never -0, so adding +0 changes no bit). A slice's sums
+// are then one loop over its slots for all its lanes at once: no exit per disc to predict.
+// Rebuilt with the lists.
 struct DiscRuns {
-  static constexpr std::int32_t kGroup = 4;
-  std::vector<std::int32_t> start;   // disc k's run: source[start[k] .. start[k + 1])
-  std::vector<std::int32_t> source;  // index into PairContacts::fx, fy, torque
+  static constexpr std::int32_t kSlice = 4;
+  std::vector<std::int32_t> slice_start;  // slice g: slots [slice_start[g], slice_start[g + 1])
+  std::vector<std::int32_t> source;       // slot -> index into PairContacts::fx, fy, torque
+
+  std::size_t slices() const { return slice_start.empty() ? 0 : slice_start.size() - 1; }
 };
 
 class NeighborSearch {
