@@ -194,6 +194,19 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 
     // ---- disc–wall pairs: same blocking as the disc pairs ----
     const auto ns = static_cast<std::int32_t>(segments.size());
+    // The distance to a segment's line is at most the distance to the segment: a disc farther
+    // from the line than it can reach (wall_candidate: r + skin, and behind a one-sided face
+    // behind_reach (2 r + skin)) is not a candidate, found without the projection's division.
+    // Most discs are far from most walls' lines. The margin keeps the test conservative.
+    struct Line { double nx, ny, offset, behind_reach; bool usable; };
+    std::vector<Line> lines(static_cast<std::size_t>(ns));
+    for (std::int32_t s = 0; s < ns; ++s) {
+      const Eigen::Vector2d ab = segments[s].b - segments[s].a;
+      const double len = ab.norm();
+      const Eigen::Vector2d normal = len > 0 ? Eigen::Vector2d(-ab.y() / len, ab.x() / len) : Eigen::Vector2d(0, 0);
+      lines[s] = {normal.x(), normal.y(), normal.dot(segments[s].a),
+                  segments[s].one_sided() ? segments[s].behind_reach : 0.0, len > 0};
+    }
     thread_walls_.resize(threads);
 #pragma omp parallel num_threads(threads)
     {
@@ -203,11 +216,16 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       out.clear();
       for (std::int32_t k = lo; k < hi; ++k) {
         const Eigen::Vector2d c(p.x[k], p.y[k]);
-        for (std::int32_t s = 0; s < ns; ++s)
-          if (segments[s].active && wall_candidate(segments[s], c, p.radius[k], skin)) {
+        const double r = p.radius[k];
+        for (std::int32_t s = 0; s < ns; ++s) {
+          const Line& l = lines[s];
+          const double reach = std::max(r + skin, l.behind_reach * (behind_depth(r) + skin));
+          const bool far = l.usable && std::abs(l.nx * c.x() + l.ny * c.y() - l.offset) > reach * (1 + 1e-9) + 1e-12;
+          if (!far && segments[s].active && wall_candidate(segments[s], c, r, skin)) {
             out.push_back(s);
             ++walls.row_start[k + 1];
           }
+        }
       }
     }
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
@@ -248,13 +266,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 
   // ---- history and per-step buffers ----
   pairs.history_width = history_width;
-  pairs.history.assign(np * history_width, 0.0);
-  pairs.fx.assign(2 * np + 1, 0); pairs.fy.assign(2 * np + 1, 0); pairs.torque.assign(2 * np + 1, 0);
+  // carry_history writes every history entry, and the kernel every push but [2 np] (and the
+  // torques of laws without friction or rolling): no fill for the rest.
+  pairs.history.resize(np * history_width);
+  pairs.fx.resize(2 * np + 1); pairs.fy.resize(2 * np + 1);
+  pairs.fx[2 * np] = pairs.fy[2 * np] = 0;
+  pairs.torque.assign(2 * np + 1, 0);
   carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.history, old_pairs_.history_width,
                 pairs.row_start, pairs.j, pairs.history, history_width, n, threads);
   const size_t nw = walls.disc.size();
   walls.history_width = history_width;
-  walls.history.assign(nw * history_width, 0.0);
+  walls.history.resize(nw * history_width);
   walls.fx.assign(nw, 0); walls.fy.assign(nw, 0); walls.torque.assign(nw, 0);
   carry_history(old_walls_.row_start, old_walls_.segment, old_walls_.history,
                 old_walls_.history_width, walls.row_start, walls.segment, walls.history,
