@@ -1,12 +1,12 @@
 // The pictures live in a loadable module, runout_pictures.so, built beside the runout binary
-// from render_cli.cpp and the renderer. The binary loads it on the first picture request
+// from picture_module.cpp and the renderer. The binary loads it on the first picture request
 // (picture_loader.cpp), so a run that draws nothing never maps OSMesa, LLVM, FFmpeg, libpng
 // or FreeType (docs/performance.md, "compute only what a scene needs").
 #pragma once
 
 #include <cstddef>
 
-#include "render_cli.hpp"
+#include "pictures.hpp"
 
 namespace runout::app {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "cli_checks.hpp"
-#include "render_cli.hpp"
+#include "pictures.hpp"
 #include "runout/errors.hpp"
 
 namespace runout::app {

@@ -17,7 +17,7 @@
 
 #include "prepare.hpp"
 #include "run_folder.hpp"
-#include "render_cli.hpp"
+#include "pictures.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"

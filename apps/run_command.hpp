@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render_cli.hpp"
+#include "pictures.hpp"
 
 namespace runout::app {
 

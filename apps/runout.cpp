@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "cli_checks.hpp"
-#include "render_cli.hpp"
+#include "pictures.hpp"
 #include "run_command.hpp"
 #include "runout/errors.hpp"
 

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "prepare.hpp"
-#include "render_cli.hpp"
+#include "pictures.hpp"
 #include "run_command.hpp"
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runout/measure.hpp"
+#include "runout/observer.hpp"
 #include "runout/setup.hpp"
 #include "runout/world.hpp"
 
@@ -41,22 +42,6 @@ struct TimeseriesRow {
 // lone disc rolling away on the floor is not part of it) — or of all discs when fewer than half
 // touch another (a single disc, a spray).
 double mass_kinetic_energy(const World& world);
-
-// Something that wants to see the world at chosen times: frame sinks, dumps, checkpoints.
-class Observer {
- public:
-  virtual ~Observer() = default;
-  virtual void observe(const World& world, double t_star) = 0;
-};
-
-// When an observer fires: every `every` t* from `first`, and/or at listed times. It fires on the
-// first step whose t* is within half a step of the requested time (the physics never bends to
-// an observer, so attaching one does not change the results).
-struct Schedule {
-  double every = 0;
-  double first = 0;
-  std::vector<double> at;
-};
 
 struct RunResult {
   bool at_rest = false;

@@ -10,7 +10,7 @@
 #include "runout/render/frame.hpp"
 #include "runout/render/idle_worker.hpp"
 #include "runout/render/video.hpp"
-#include "runout/run.hpp"
+#include "runout/observer.hpp"
 
 namespace runout::render {
 

@@ -1,6 +1,7 @@
 // Command-line options for pictures (runout run, runout render) and the commands that only
-// exist with the renderer (render, compare). The binary declares them; the picture module
-// (picture_module.hpp) defines them, and picture_loader.cpp forwards each call to it.
+// exist with the renderer (render, compare). The binary defines them in picture_loader.cpp,
+// each forwarding to its body in the picture module (picture_module.cpp, reached through
+// PictureApi, picture_module.hpp).
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // The picture module (runout_pictures.so): everything that draws, behind PictureApi.
-#include "render_cli.hpp"
+#include "pictures.hpp"
 
 #include <cctype>
 #include <chrono>
@@ -96,11 +96,11 @@ class Session : public PictureSession {
   std::string movie_path_;
 };
 
-}  // namespace
-
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
-                                                const SceneDef& scene, const SceneSetup& setup,
-                                                const std::string& out_dir) {
+// The module's bodies of the commands pictures.hpp declares, under their own names (the binary's definitions in
+// picture_loader.cpp forward to these through PictureApi).
+std::unique_ptr<PictureSession> module_attach(const PictureOptions& o, AvalancheRun& run, const World& world,
+                                              const SceneDef& scene, const SceneSetup& setup,
+                                              const std::string& out_dir) {
   return std::make_unique<Session>(o, run, world, scene, setup, out_dir);
 }
 
@@ -117,7 +117,7 @@ render::PictureFormat render_format(const RenderOptions& o) {
   return render::parse_picture_format(o.picture.snapshot_format);
 }
 
-int render_command(const RenderOptions& o) {
+int module_render(const RenderOptions& o) {
   const render::PictureFormat format = render_format(o);
   // Default: the run's scene beside the checkpoint, or one folder up for OUT/states/*.bin.
   std::string scene_path = o.scene;
@@ -156,7 +156,7 @@ int render_command(const RenderOptions& o) {
   return 0;
 }
 
-int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
+int module_bench(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between) {
   using Clock = std::chrono::steady_clock;
   render::FrameMaker maker(frame_options(o), scene, setup, &world);
@@ -202,7 +202,7 @@ int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, c
   return 0;
 }
 
-int compare_command(const CompareOptions& o) {
+int module_compare(const CompareOptions& o) {
   // Exit codes: 0 match, 1 no match, 2 bad input (an unreadable PNG, a --diff that cannot be
   // written) — the last checked before anything is compared, so 1 always means "differ".
   if (!o.diff.empty()) {
@@ -246,16 +246,18 @@ int compare_command(const CompareOptions& o) {
   return c.match ? 0 : 1;
 }
 
+}  // namespace
+
 }  // namespace runout::app
 
 extern "C" __attribute__((visibility("default"))) const runout::app::PictureApi* runout_picture_api() {
   using namespace runout::app;
   static const PictureApi api = [] {
     PictureApi a = expected_picture_api_layout(RUNOUT_BUILD_STAMP);
-    a.render = &render_command;
-    a.compare = &compare_command;
-    a.attach = &attach_pictures;
-    a.bench = &bench_frames;
+    a.render = &module_render;
+    a.compare = &module_compare;
+    a.attach = &module_attach;
+    a.bench = &module_bench;
     return a;
   }();
   return &api;

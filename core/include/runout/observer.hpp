@@ -1,0 +1,27 @@
+// What sees a run as it goes (frame sinks, dumps, checkpoints) and when: the one piece of the
+// run (run.hpp) that the renderer's recorders need, so they do not include the whole run.
+#pragma once
+
+#include <vector>
+
+#include "runout/world.hpp"
+
+namespace runout {
+
+// Something that wants to see the world at chosen times: frame sinks, dumps, checkpoints.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void observe(const World& world, double t_star) = 0;
+};
+
+// When an observer fires: every `every` t* from `first`, and/or at listed times. It fires on the
+// first step whose t* is within half a step of the requested time (the physics never bends to
+// an observer, so attaching one does not change the results).
+struct Schedule {
+  double every = 0;
+  double first = 0;
+  std::vector<double> at;
+};
+
+}  // namespace runout
