@@ -190,4 +190,22 @@ double farthest_edge_x(const Particles& p) {
   return x;
 }
 
+double mass_kinetic_energy(const Particles& p, const PairContacts& c) {
+  std::vector<char> in_mass(p.size(), 0);
+  for (std::size_t q = 0; q < c.size(); ++q) {
+    const std::int32_t i = c.i[q], j = c.j[q];
+    const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], rsum = p.radius[i] + p.radius[j];
+    if (dx * dx + dy * dy < rsum * rsum) in_mass[i] = in_mass[j] = 1;
+  }
+  // A scene that is mostly lone discs (one disc, a sparse spray) has no "mass" apart from its
+  // discs: then every disc counts.
+  std::size_t members = 0;
+  for (char m : in_mass) members += m;
+  const bool all = 2 * members < p.size();
+  double e = 0;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (all || in_mass[k]) e += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k]);
+  return e;
+}
+
 }  // namespace runout

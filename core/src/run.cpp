@@ -81,26 +81,6 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
   return s;
 }
 
-double mass_kinetic_energy(const World& world) {
-  const auto& p = world.particles();
-  const auto& c = world.pairs();
-  std::vector<char> in_mass(p.size(), 0);
-  for (std::size_t q = 0; q < c.size(); ++q) {
-    const std::int32_t i = c.i[q], j = c.j[q];
-    const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], rsum = p.radius[i] + p.radius[j];
-    if (dx * dx + dy * dy < rsum * rsum) in_mass[i] = in_mass[j] = 1;
-  }
-  // A scene that is mostly lone discs (one disc, a sparse spray) has no "mass" apart from its
-  // discs: then every disc counts.
-  std::size_t members = 0;
-  for (char m : in_mass) members += m;
-  const bool all = 2 * members < p.size();
-  double e = 0;
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (all || in_mass[k]) e += 0.5 * p.mass[k] * (p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k]);
-  return e;
-}
-
 namespace {
 
 // Lowest point of the scene at release: the floor in the thesis scene (Ep0 of table 3.2 is
@@ -236,7 +216,7 @@ bool AvalancheRun::finished() {
   const auto& p = world_.particles();
   const double total = state_.ep0 > 0 ? translational_energy(p) / state_.ep0 : 0.0;
   if (total > state_.peak_ek) { state_.peak_ek = total; state_.t_star_peak_ek = now; }
-  const double ratio = state_.ep0 > 0 ? mass_kinetic_energy(world_) / state_.ep0 : 0.0;
+  const double ratio = state_.ep0 > 0 ? mass_kinetic_energy(world_.particles(), world_.pairs()) / state_.ep0 : 0.0;
   const double half_step = 0.5 * setup_.dt / setup_.unit_time;
   const bool may_stop = now >= min_end_time_ - half_step;
   if (ratio < scene_.rest.ek_threshold) {

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "runout/errors.hpp"
-#include "runout/run.hpp"
+#include "runout/measure.hpp"
 
 namespace runout {
 
@@ -335,7 +335,7 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
     world.check_escape(setup.large_diameter);
     // As for rest after release (run.cpp): a disc rattling alone on top must not hold up
     // a settled pile.
-    const double ratio = mass_kinetic_energy(world) / potential_energy(world.particles(), gravity);
+    const double ratio = mass_kinetic_energy(world.particles(), world.pairs()) / potential_energy(world.particles(), gravity);
     if (progress && step % (10 * check_every) == 0) progress(t_star, ratio);
     const bool quiet = ratio < prep.settle_ek_threshold;
     // Damping only once the pile has collapsed: damped, the collapse under gravity itself

@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "runout/neighbor_list.hpp"
 #include "runout/particles.hpp"
 #include "runout/walls.hpp"
 
@@ -21,6 +22,11 @@ Eigen::Vector2d centre_of_mass(const Particles& p);                     // eq. 4
 double translational_energy(const Particles& p);                        // eq. 4.5
 double rotational_energy(const Particles& p);
 double potential_energy(const Particles& p, double gravity);            // above y = 0
+
+// Translational kinetic energy of the discs that touch at least one other disc (the mass; a
+// lone disc rolling away on the floor is not part of it) — or of all discs when fewer than half
+// touch another (a single disc, a spray).
+double mass_kinetic_energy(const Particles& p, const PairContacts& pairs);
 
 // Height of a point above the bed: distance to the nearest bed segment (incline or floor).
 double height_above_bed(const std::vector<Segment>& segments, const Eigen::Vector2d& point);

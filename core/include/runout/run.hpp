@@ -38,11 +38,6 @@ struct TimeseriesRow {
   double max_overlap = 0;  // largest overlap / smaller radius among touching disc pairs now
 };
 
-// Translational kinetic energy of the discs that touch at least one other disc (the mass; a
-// lone disc rolling away on the floor is not part of it) — or of all discs when fewer than half
-// touch another (a single disc, a spray).
-double mass_kinetic_energy(const World& world);
-
 struct RunResult {
   bool at_rest = false;
   bool reached_end_time = false;  // stopped by output.end_time
