@@ -31,7 +31,7 @@ struct PairSource {
   const double* __restrict vx; const double* __restrict vy; const double* __restrict om;
   const double* __restrict r; const std::int32_t* __restrict species;
   const std::int32_t* __restrict pi; const std::int32_t* __restrict pj;
-  int species_count;
+  const std::int32_t* __restrict kind;
   double dt;
 
   [[gnu::always_inline]] Contact operator()(std::int64_t q) const {
@@ -56,7 +56,7 @@ struct PairSource {
     k.radius_i = r[i];
     k.radius_j = r[j];
     k.dt = dt;
-    c.kind = species[i] * species_count + species[j];
+    c.kind = kind[q];
     c.guard_depth = rsum;
     return c;
   }
@@ -205,7 +205,7 @@ PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
 
 PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
   return {p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(), p.radius.data(),
-          p.species.data(), c.i.data(), c.j.data(), step.table.species_count, step.settings.dt};
+          p.species.data(), c.i.data(), c.j.data(), c.kind.data(), step.settings.dt};
 }
 WallSource wall_source(const StepContext& step, const Particles& p, const WallContacts& c) {
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};

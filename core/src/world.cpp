@@ -143,6 +143,9 @@ void World::rebuild_lists() {
   const auto t0 = Clock::now();
   search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, history_width_,
                   pairs_, wall_contacts_, runs_);
+  pairs_.kind.resize(pairs_.size());
+  for (std::size_t q = 0; q < pairs_.size(); ++q)
+    pairs_.kind[q] = particles_.species[pairs_.i[q]] * table_.species_count + particles_.species[pairs_.j[q]];
   x_at_rebuild_ = particles_.x;
   y_at_rebuild_ = particles_.y;
   radius_at_rebuild_ = particles_.radius;

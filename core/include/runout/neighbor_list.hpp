@@ -25,6 +25,9 @@ struct PairContacts {
   // is always zero.
   std::vector<double> fx, fy, torque;
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
+  // Row of the contact parameter table (species_i * species_count + species_j), set with the
+  // lists by the World (the search does not know the table).
+  std::vector<std::int32_t> kind;
 
   std::size_t size() const { return i.size(); }
 };
