@@ -29,7 +29,7 @@ struct PairSource {
   static constexpr bool kPairs = true;
   const double* __restrict x; const double* __restrict y;
   const double* __restrict vx; const double* __restrict vy; const double* __restrict om;
-  const double* __restrict r; const std::int32_t* __restrict species;
+  const double* __restrict r;
   const std::int32_t* __restrict pi; const std::int32_t* __restrict pj;
   const std::int32_t* __restrict kind;
   double dt;
@@ -205,7 +205,7 @@ PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
 
 PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
   return {p.x.data(), p.y.data(), p.vx.data(), p.vy.data(), p.omega.data(), p.radius.data(),
-          p.species.data(), c.i.data(), c.j.data(), c.kind.data(), step.settings.dt};
+          c.i.data(), c.j.data(), c.kind.data(), step.settings.dt};
 }
 WallSource wall_source(const StepContext& step, const Particles& p, const WallContacts& c) {
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
