@@ -99,6 +99,41 @@ TEST(Blend, CoverageInIntegersEqualsTheBlendInDouble) {
     }
 }
 
+// The PNG writer deflates strips of rows side by side and joins them into one zlib stream;
+// libpng's reader (which inflates with zlib and checks the stream's Adler-32) must give back
+// every pixel, for heights of one strip and of several, odd widths, with and without alpha.
+TEST(Png, StripsDecodeToTheSamePixels) {
+  std::uint32_t state = 12345;
+  auto next = [&] { state = state * 1664525u + 1013904223u; return static_cast<std::uint8_t>(state >> 24); };
+  const auto dir = std::filesystem::temp_directory_path() / "runout_png_strips";
+  std::filesystem::create_directories(dir);
+  for (auto [w, h] : {std::pair{1, 1}, {7, 63}, {300, 64}, {301, 257}, {1280, 720}}) {
+    for (bool alpha : {false, true}) {
+      Image img(w, h, {255, 255, 255, 255});
+      // Noise in the left third (literals), flat blocks elsewhere (runs), so the strips' pieces
+      // hold both kinds of DEFLATE block.
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          if (3 * x < w) img.set(x, y, {next(), next(), next(), alpha ? next() : std::uint8_t{255}});
+          else if ((x / 16 + y / 16) % 2) img.set(x, y, {0, 114, 178, alpha ? std::uint8_t{128} : std::uint8_t{255}});
+      const std::string path = (dir / "strips.png").string();
+      write_png(path, img, alpha);
+      const Image back = read_png(path);
+      ASSERT_EQ(back.width, w);
+      ASSERT_EQ(back.height, h);
+      long wrong = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          Rgba e = img.at(x, y);
+          if (!alpha) e.a = 255;
+          wrong += !(back.at(x, y) == e);
+        }
+      EXPECT_EQ(wrong, 0) << w << "x" << h << (alpha ? " RGBA" : " RGB");
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Compare, CatchesAnAlteredFrameAndToleratesEdges) {
   GlRenderer gl(160, 90);
   DiscBatch discs;
