@@ -53,24 +53,39 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
             if (distance_to(walls[s], {p.x[a], p.y[a]}) < p.radius[a] + skin) wall_expected.insert({int(a), int(s)});
         EXPECT_EQ(wall_found, wall_expected);
         // Each disc's run: the pairs where it is i (by j), then where it is j (by i), as
-        // pushes on i at [q] and on j at [size + q], in the lane of its slice (disc k: slot s
-        // at slice_start[k / L] + L s + k % L), the slice as long as its longest run and the
-        // padding reading the push that is always zero; every push read once.
-        constexpr std::int32_t L = DiscRuns::kSlice;
+        // pushes on i at [q] and on j at [size + q], in its lane of a slice (lane m of slice g
+        // at slice_start[g] + L s + m for slot s), the slice as long as its longest run and the
+        // padding reading the push that is always zero; every push read once. The lanes of a
+        // window of kWindow discs are those discs, longest run first.
+        constexpr std::int32_t L = DiscRuns::kSlice, W = DiscRuns::kWindow;
         const auto np = static_cast<std::int32_t>(pairs.size());
         std::vector<std::vector<std::int32_t>> expected_run(p.size()), run(p.size());
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.i[q]].push_back(q);
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(np + q);
         ASSERT_EQ(runs.slices(), (p.size() + L - 1) / L);
+        ASSERT_EQ(runs.lane_disc.size(), runs.slices() * L);
         ASSERT_EQ(runs.source.size(), std::size_t(runs.slice_start.back()));
+        std::vector<int> lanes_of(p.size(), 0);
+        for (std::size_t m = 0; m < runs.lane_disc.size(); ++m) {
+          const std::int32_t k = runs.lane_disc[m];
+          if (m >= p.size()) { EXPECT_EQ(k, -1) << "lanes past the last disc are empty"; continue; }
+          ASSERT_GE(k, 0);
+          ASSERT_LT(std::size_t(k), p.size());
+          ++lanes_of[k];
+          EXPECT_EQ(std::size_t(k) / W, m / W) << "a disc stays in its window";
+          if (m % W > 0)
+            EXPECT_GE(expected_run[runs.lane_disc[m - 1]].size(), expected_run[k].size()) << "longest first";
+        }
+        EXPECT_EQ(lanes_of, std::vector<int>(p.size(), 1)) << "every disc in exactly one lane";
         for (std::size_t g = 0; g < runs.slices(); ++g) {
           const std::int32_t longest = (runs.slice_start[g + 1] - runs.slice_start[g]) / L;
           std::size_t expected_longest = 0;
-          for (std::size_t k = g * L; k < (g + 1) * L; ++k) {
-            if (k < p.size()) expected_longest = std::max(expected_longest, expected_run[k].size());
+          for (std::size_t m = g * L; m < (g + 1) * L; ++m) {
+            const std::int32_t k = runs.lane_disc[m];
+            if (k >= 0) expected_longest = std::max(expected_longest, expected_run[k].size());
             for (std::int32_t s = 0; s < longest; ++s) {
-              const std::int32_t e = runs.source[runs.slice_start[g] + L * s + k % L];
-              if (k < p.size() && std::size_t(s) < expected_run[k].size()) run[k].push_back(e);
+              const std::int32_t e = runs.source[runs.slice_start[g] + L * s + m % L];
+              if (k >= 0 && std::size_t(s) < expected_run[k].size()) run[k].push_back(e);
               else EXPECT_EQ(e, 2 * np) << "padding";
             }
           }

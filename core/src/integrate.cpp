@@ -31,7 +31,7 @@ void for_blocks(std::int64_t n, int threads, const Body& body, const Boundary& b
 // accelerations (eqs. 2.10–2.11): its run of pair pushes (a slice's discs side by side, one
 // lane each, so each disc's additions stay in its run's order), then its walls, then
 // F / m + g. The additions are 0 + row + incoming + walls in that order whatever the thread
-// count. `lo` starts a slice.
+// count. `lo` starts a window of lanes (DiscRuns::kWindow), `hi` too or is n.
 void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns& runs,
                    std::int64_t lo, std::int64_t hi, double gx, double gy,
                    const double* __restrict inv_mass, const double* __restrict inv_inertia,
@@ -42,6 +42,7 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
   const double* __restrict torque = c.torque.data();
   const std::int32_t* __restrict slice_start = runs.slice_start.data();
   const std::int32_t* __restrict src = runs.source.data();
+  const std::int32_t* __restrict lane_disc = runs.lane_disc.data();
   for (std::int64_t g = lo / L; g * L < hi; ++g) {
     double sx[L] = {}, sy[L] = {}, st[L] = {};
     for (std::int64_t s = slice_start[g]; s < slice_start[g + 1]; s += L)
@@ -49,9 +50,10 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
         const std::int32_t e = src[s + l];
         sx[l] += fx[e]; sy[l] += fy[e]; st[l] += torque[e];
       }
-    for (std::int64_t l = 0; l < L && g * L + l < hi; ++l) {
-      ax[g * L + l] = sx[l]; ay[g * L + l] = sy[l]; alpha[g * L + l] = st[l];
-    }
+    for (std::int64_t l = 0; l < L; ++l)
+      if (const std::int32_t k = lane_disc[g * L + l]; k >= 0) {
+        ax[k] = sx[l]; ay[k] = sy[l]; alpha[k] = st[l];
+      }
   }
   // Few discs touch a wall: adding their contacts after all rows keeps each disc's order
   // (walls last, by segment) without a loop per disc.
@@ -113,18 +115,24 @@ Motion kick_drift(std::int64_t lo, std::int64_t hi, double kick, double drift,
 // The first disc of block t of T when the work of a slice is its slots plus one per disc (its
 // update): large discs have runs several times longer than small ones and gather where the
 // flow has segregated them, so equal numbers of discs would leave one thread waiting. Blocks
-// start at whole slices (DiscRuns).
+// start at whole windows of lanes (DiscRuns): a window's discs are summed by its slices.
 std::int64_t disc_block_start(const DiscRuns& runs, std::int64_t n, int t, int T) {
   if (t >= T) return n;
-  constexpr std::int64_t L = DiscRuns::kSlice;
+  constexpr std::int64_t L = DiscRuns::kSlice, S = DiscRuns::kWindow / DiscRuns::kSlice;
   const auto slices = static_cast<std::int64_t>(runs.slices());
-  const std::int64_t total = runs.slice_start[slices] + L * slices, goal = total * t / T;
-  std::int64_t lo = 0, hi = slices;  // first g with slice_start[g] + L g >= goal
+  const auto windows = (slices + S - 1) / S;
+  // The work before window w: its slots and one per disc lane.
+  auto before = [&](std::int64_t w) {
+    const std::int64_t g = std::min(slices, w * S);
+    return runs.slice_start[g] + L * g;
+  };
+  const std::int64_t goal = before(windows) * t / T;
+  std::int64_t lo = 0, hi = windows;  // first window w with before(w) >= goal
   while (lo < hi) {
     const std::int64_t mid = (lo + hi) / 2;
-    if (runs.slice_start[mid] + L * mid < goal) lo = mid + 1; else hi = mid;
+    if (before(mid) < goal) lo = mid + 1; else hi = mid;
   }
-  return std::min(n, L * lo);
+  return std::min(n, DiscRuns::kWindow * lo);
 }
 
 Motion Motion::merge(const Motion& a, const Motion& b) {

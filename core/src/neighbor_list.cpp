@@ -243,17 +243,37 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   cursor_.assign(static_cast<size_t>(n), 0);
   for (size_t q = 0; q < np; ++q) ++cursor_[pairs.j[q]];
   const std::int32_t slices = (n + L - 1) / L;
+  auto run_length = [&](std::int32_t k) { return pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k]; };
+  // Lanes: each window's discs by run length, longest first (ties by index).
+  constexpr std::int32_t W = DiscRuns::kWindow;
+  static_assert(W % L == 0);
+  runs.lane_disc.assign(static_cast<size_t>(slices) * L, -1);
+  lane_of_.resize(static_cast<size_t>(n));
+  for (std::int32_t w0 = 0; w0 < n; w0 += W) {
+    std::int32_t* lanes = runs.lane_disc.data() + w0;
+    const std::int32_t count = std::min(W, n - w0);
+    for (std::int32_t m = 0; m < count; ++m) {  // insertion sort: a window is short
+      const std::int32_t k = w0 + m, len = run_length(k);
+      std::int32_t at = m;
+      for (; at > 0 && run_length(lanes[at - 1]) < len; --at) lanes[at] = lanes[at - 1];
+      lanes[at] = k;
+    }
+    for (std::int32_t m = 0; m < count; ++m) lane_of_[lanes[m]] = w0 + m;
+  }
   runs.slice_start.resize(static_cast<size_t>(slices) + 1);
   runs.slice_start[0] = 0;
   for (std::int32_t g = 0; g < slices; ++g) {
     std::int32_t longest = 0;
-    for (std::int32_t k = g * L; k < std::min(n, (g + 1) * L); ++k)
-      longest = std::max(longest, pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k]);
+    for (std::int32_t l = 0; l < L; ++l)
+      if (const std::int32_t k = runs.lane_disc[g * L + l]; k >= 0) longest = std::max(longest, run_length(k));
     runs.slice_start[g + 1] = runs.slice_start[g] + L * longest;
   }
   // Padding reads the push at [2 np], which the kernel never writes.
   runs.source.assign(runs.slice_start.back(), static_cast<std::int32_t>(2 * np));
-  auto slot = [&](std::int32_t k, std::int32_t s) { return runs.slice_start[k / L] + L * s + k % L; };
+  auto slot = [&](std::int32_t k, std::int32_t s) {
+    const std::int32_t lane = lane_of_[k];
+    return runs.slice_start[lane / L] + L * s + lane % L;
+  };
   for (std::int32_t k = 0; k < n; ++k) {
     for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q)
       runs.source[slot(k, q - pairs.row_start[k])] = q;

@@ -48,15 +48,19 @@ struct WallContacts {
 // order is a function of the lists alone, and pairs that do not touch push exactly zero, so
 // sums are bit-identical for any thread count and skin.
 // The runs are laid out kSlice discs side by side (a sliced ELLPACK layout): slice g holds
-// discs kSlice g .. kSlice g + kSlice - 1, slot s of its lane l at
-// slice_start[g] + kSlice s + l, each lane padded to the slice's longest run with the push that
-// is always zero (a sum started at +0 is never -0, so adding +0 changes no bit). A slice's sums
-// are then one loop over its slots for all its lanes at once: no exit per disc to predict.
-// Rebuilt with the lists.
+// the discs lane_disc[kSlice g + l], slot s of lane l at slice_start[g] + kSlice s + l, each
+// lane padded to the slice's longest run with the push that is always zero (a sum started at
+// +0 is never -0, so adding +0 changes no bit). A slice's sums are then one loop over its
+// slots for all its lanes at once: no exit per disc to predict. The lanes of each window of
+// kWindow discs hold that window's discs longest run first, so a large disc shares its slice
+// with large ones rather than padding three small ones to its length (D/d = 4: 1.43 slots per
+// push with consecutive discs). Rebuilt with the lists.
 struct DiscRuns {
   static constexpr std::int32_t kSlice = 4;
+  static constexpr std::int32_t kWindow = 32;  // discs; a multiple of kSlice
   std::vector<std::int32_t> slice_start;  // slice g: slots [slice_start[g], slice_start[g + 1])
   std::vector<std::int32_t> source;       // slot -> index into PairContacts::fx, fy, torque
+  std::vector<std::int32_t> lane_disc;    // kSlice g + l -> disc of that lane, -1 past the last
 
   std::size_t slices() const { return slice_start.empty() ? 0 : slice_start.size() - 1; }
 };
@@ -76,6 +80,7 @@ class NeighborSearch {
   std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged
   std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
   std::vector<std::int32_t> cursor_;
+  std::vector<std::int32_t> lane_of_;  // disc -> its lane (DiscRuns::lane_disc)
   PairContacts old_pairs_;
   WallContacts old_walls_;
 };
