@@ -381,8 +381,7 @@ int bench_command(const BenchOptions& o) {
   std::printf("seconds: %.4f\n", secs);
   std::printf("pairs_listed_per_disc: %.3f\n", world.pairs().size() / n);
   std::printf("rebuilds: %lld\n", static_cast<long long>(after.rebuilds - before.rebuilds));
-  std::printf("share_pair_forces: %.3f\n", (after.pair_forces - before.pair_forces) / secs);
-  std::printf("share_wall_forces: %.3f\n", (after.wall_forces - before.wall_forces) / secs);
+  std::printf("share_contact_forces: %.3f\n", (after.contact_forces - before.contact_forces) / secs);
   std::printf("share_integrate: %.3f\n", (after.integrate - before.integrate) / secs);
   std::printf("share_rebuild: %.3f\n", (after.rebuild - before.rebuild) / secs);
   std::printf("particle_steps_per_second: %.0f\n", n * o.steps / secs);

@@ -168,39 +168,47 @@ struct Kernel {
   }
 };
 
-// Runs a kernel over [0, n). Forces are per contact, so any split gives the same bits; the
-// ledger's sums are taken over fixed blocks of contacts added in order, so they are the same
-// bits for every thread count too (a resumed run may use another, SPEC §8).
-// Without the ledger, thread t takes the contacts from split(t, T) (split(0, T) = 0,
-// split(T, T) = n).
-template <class K, class Split>
-PassSums run(const K& kernel, std::int64_t n, int threads, bool ledger,
-             std::vector<PassSums>& blocks, const Split& split) {
-  PassSums total;
+// Runs the pair kernel over [0, n) and the wall kernel over [0, nw). Forces are per contact,
+// so any split gives the same bits; the ledger's sums are taken over fixed blocks of contacts
+// added in order, so they are the same bits for every thread count too (a resumed run may use
+// another, SPEC §8). Without the ledger, thread t takes the pairs from split(t, T) (split(0, T)
+// = 0, split(T, T) = n) and then its share of the walls, in one parallel region: the walls are
+// too few to be worth a fork and join of their own.
+template <class PairKernel, class WallKernel, class Split>
+PassSums run(const PairKernel& pairs, std::int64_t n, const WallKernel& walls, std::int64_t nw,
+             int threads, bool ledger, std::vector<PassSums>& blocks, const Split& split) {
+  auto merge = [](PassSums a, const PassSums& b) {
+    a.worst = std::max(a.worst, b.worst);
+    a.loss_normal += b.loss_normal;
+    a.loss_friction += b.loss_friction;
+    a.loss_rolling += b.loss_rolling;
+    return a;
+  };
   if (!ledger) {
-    if (threads == 1 || n < 64) return kernel(0, n);
+    if (threads == 1 || n + nw < 64) return merge(pairs(0, n), walls(0, nw));
     PassSums part[kMaxThreads] = {};
 #pragma omp parallel num_threads(threads)
     {
       const int t = omp_get_thread_num(), T = omp_get_num_threads();
-      part[t] = kernel(split(t, T), split(t + 1, T));
+      part[t] = merge(pairs(split(t, T), split(t + 1, T)), walls(nw * t / T, nw * (t + 1) / T));
     }
+    PassSums total;
     for (int t = 0; t < threads; ++t) total.worst = std::max(total.worst, part[t].worst);
     return total;
   }
-  constexpr std::int64_t kBlock = 256;  // small enough to balance two threads on a few thousand pairs
-  const std::int64_t count = (n + kBlock - 1) / kBlock;
-  blocks.resize(static_cast<std::size_t>(count));
+  auto blocked = [&](const auto& kernel, std::int64_t count_of) {
+    constexpr std::int64_t kBlock = 256;  // small enough to balance two threads on a few thousand pairs
+    const std::int64_t count = (count_of + kBlock - 1) / kBlock;
+    blocks.resize(static_cast<std::size_t>(count));
 #pragma omp parallel for num_threads(threads) if (threads > 1 && count > 1) schedule(static)
-  for (std::int64_t b = 0; b < count; ++b)
-    blocks[b] = kernel(b * kBlock, std::min(n, (b + 1) * kBlock));
-  for (const PassSums& part : blocks) {
-    total.worst = std::max(total.worst, part.worst);
-    total.loss_normal += part.loss_normal;
-    total.loss_friction += part.loss_friction;
-    total.loss_rolling += part.loss_rolling;
-  }
-  return total;
+    for (std::int64_t b = 0; b < count; ++b)
+      blocks[b] = kernel(b * kBlock, std::min(count_of, (b + 1) * kBlock));
+    PassSums total;
+    for (const PassSums& part : blocks) total = merge(total, part);
+    return total;
+  };
+  const PassSums pair_sums = blocked(pairs, n);
+  return merge(pair_sums, blocked(walls, nw));
 }
 
 PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
@@ -233,24 +241,16 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
   auto pair_split = [&](int t, int T) {
     return static_cast<std::int64_t>(pairs.row_start[disc_block_start(runs, n, t, T)]);
   };
-  PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), st.threads, kLedger, blocks,
-                      pair_split);
-  profile.pair_forces += seconds_since(t0);
-  t0 = Clock::now();
   const auto wall_law = Model::tables(step.table.wall);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, walls.history.data(),
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
                                               walls.torque.data()};
-  const auto nw = static_cast<std::int64_t>(walls.size());
-  const PassSums w = run(wk, nw, st.threads, kLedger, blocks,
-                         [nw](int t, int T) { return nw * t / T; });
-  profile.wall_forces += seconds_since(t0);
-  sums.worst = std::max(sums.worst, w.worst);
-  sums.loss_normal += w.loss_normal;
-  sums.loss_friction += w.loss_friction;
-  sums.loss_rolling += w.loss_rolling;
+  const PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), wk,
+                            static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks,
+                            pair_split);
+  profile.contact_forces += seconds_since(t0);
   return sums;
 }
 

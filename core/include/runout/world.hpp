@@ -51,7 +51,7 @@ struct StepSettings {
 
 // Wall-clock seconds spent in each phase since construction.
 struct StepProfile {
-  double pair_forces = 0, wall_forces = 0, integrate = 0, rebuild = 0;
+  double contact_forces = 0, integrate = 0, rebuild = 0;  // contact forces: pairs and walls
   std::int64_t rebuilds = 0;
 };
 
@@ -162,7 +162,7 @@ class World {
   double guard_radius_scale_ = 1.0;
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
-  std::vector<PassSums> ledger_blocks_;  // per block of pairs, scratch of pair_forces
+  std::vector<PassSums> ledger_blocks_;  // per block of pairs, scratch of the contact forces
 };
 
 }  // namespace runout

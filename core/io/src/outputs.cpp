@@ -96,8 +96,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["particle_steps_per_second"] = r.particle_steps_per_second;
   j["threads"] = c.threads;
   j["seed"] = c.seed;
-  j["profile_seconds"] = {{"pair_forces", r.profile.pair_forces},
-                          {"wall_forces", r.profile.wall_forces},
+  j["profile_seconds"] = {{"contact_forces", r.profile.contact_forces},
                           {"integrate", r.profile.integrate},
                           {"rebuild", r.profile.rebuild},
                           {"rebuilds", r.profile.rebuilds}};
