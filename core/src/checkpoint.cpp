@@ -1,6 +1,7 @@
 #include "runout/checkpoint.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "runout/errors.hpp"
 
@@ -81,10 +82,7 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   w.put(world.dissipation().normal);
   w.put(world.dissipation().friction);
   w.put(world.dissipation().rolling);
-  w.put_vector(p.x); w.put_vector(p.y); w.put_vector(p.vx); w.put_vector(p.vy);
-  w.put_vector(p.omega); w.put_vector(p.angle); w.put_vector(p.ax); w.put_vector(p.ay);
-  w.put_vector(p.alpha); w.put_vector(p.radius); w.put_vector(p.mass);
-  w.put_vector(p.inv_inertia); w.put_vector(p.species); w.put_vector(p.id);
+  Particles::for_each_stored(p, [&](const char*, const auto& v) { w.put_vector(v); });
   std::vector<std::uint8_t> active;
   for (const auto& s : world.segments()) active.push_back(s.active ? 1 : 0);
   w.put_vector(active);
@@ -138,18 +136,13 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
       !std::isfinite(lost.friction) || !std::isfinite(lost.rolling))
     throw IoError(name + ": checkpoint is corrupt (clock or energy ledger)");
   Particles p;
-  p.x = r.get_vector<double>(); p.y = r.get_vector<double>();
-  p.vx = r.get_vector<double>(); p.vy = r.get_vector<double>();
-  p.omega = r.get_vector<double>(); p.angle = r.get_vector<double>();
-  p.ax = r.get_vector<double>(); p.ay = r.get_vector<double>(); p.alpha = r.get_vector<double>();
-  p.radius = r.get_vector<double>(); p.mass = r.get_vector<double>();
-  p.inv_inertia = r.get_vector<double>(); p.species = r.get_vector<std::int32_t>();
-  p.id = r.get_vector<std::int64_t>();
+  Particles::for_each_stored(p, [&](const char*, auto& v) {
+    v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
+  });
   const std::size_t n = p.x.size();
-  for (auto* v : {&p.y, &p.vx, &p.vy, &p.omega, &p.angle, &p.ax, &p.ay, &p.alpha, &p.radius,
-                  &p.mass, &p.inv_inertia})
-    if (v->size() != n) throw IoError(name + ": checkpoint is corrupt (array sizes differ)");
-  if (p.species.size() != n || p.id.size() != n) throw IoError(name + ": checkpoint is corrupt");
+  Particles::for_each_stored(p, [&](const char* field, const auto& v) {
+    if (v.size() != n) throw IoError(name + ": checkpoint is corrupt (" + field + " has another length than x)");
+  });
   check_state(p, world.table().species_count, name);
   p.inv_mass.resize(n);
   for (std::size_t k = 0; k < n; ++k) p.inv_mass[k] = 1.0 / p.mass[k];

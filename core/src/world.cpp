@@ -94,9 +94,7 @@ void World::reorder_discs() {
     auto copy = v;
     for (std::size_t k = 0; k < n; ++k) v[k] = copy[key[k].second];
   };
-  permute(p.x); permute(p.y); permute(p.vx); permute(p.vy); permute(p.omega);
-  permute(p.radius); permute(p.inv_mass); permute(p.inv_inertia); permute(p.species);
-  permute(p.ax); permute(p.ay); permute(p.alpha); permute(p.angle); permute(p.mass); permute(p.id);
+  Particles::for_each_array(p, [&](const char*, auto& v) { permute(v); });
 
   // History keyed by the new numbering, rows sorted, ready for the search to carry over.
   // Contacts with all-zero history (not touching) need not be carried.

@@ -21,14 +21,29 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // The one list of the per-disc arrays: f(name, array) for each array a checkpoint stores,
+  // in the order it stores them, then (for_each_array) inv_mass, which is derived from mass.
+  // Adding a disc, renumbering the discs and the checkpoint codec all go through it.
+  template <class Self, class F>
+  static void for_each_stored(Self& p, F&& f) {
+    f("x", p.x); f("y", p.y); f("vx", p.vx); f("vy", p.vy); f("omega", p.omega);
+    f("angle", p.angle); f("ax", p.ax); f("ay", p.ay); f("alpha", p.alpha);
+    f("radius", p.radius); f("mass", p.mass); f("inv_inertia", p.inv_inertia);
+    f("species", p.species); f("id", p.id);
+  }
+  template <class Self, class F>
+  static void for_each_array(Self& p, F&& f) {
+    for_each_stored(p, f);
+    f("inv_mass", p.inv_mass);
+  }
+
   void add(std::int64_t disc_id, int species_index, double px, double py, double r, double m,
            double inertia, double pvx = 0, double pvy = 0, double pomega = 0) {
-    x.push_back(px); y.push_back(py); vx.push_back(pvx); vy.push_back(pvy);
-    omega.push_back(pomega); radius.push_back(r);
-    inv_mass.push_back(1.0 / m); inv_inertia.push_back(1.0 / inertia);
-    species.push_back(species_index);
-    ax.push_back(0); ay.push_back(0); alpha.push_back(0);
-    angle.push_back(0); mass.push_back(m); id.push_back(disc_id);
+    for_each_array(*this, [](const char*, auto& v) { v.emplace_back(); });  // zeros
+    const std::size_t k = size() - 1;
+    x[k] = px; y[k] = py; vx[k] = pvx; vy[k] = pvy; omega[k] = pomega; radius[k] = r;
+    inv_mass[k] = 1.0 / m; inv_inertia[k] = 1.0 / inertia; species[k] = species_index;
+    mass[k] = m; id[k] = disc_id;
   }
 };
 
