@@ -151,12 +151,11 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
                const std::vector<double>& y_at_rebuild, bool gather, double kick, double drift) {
   const StepSettings& st = step.settings;
   const auto n = static_cast<std::int64_t>(p.size());
-  Motion part[kMaxThreads];
   const bool runs_ready = runs.slices() == static_cast<std::size_t>((n + DiscRuns::kSlice - 1) / DiscRuns::kSlice);
   auto boundary = [&](int t, int T) {
     return runs_ready ? disc_block_start(runs, n, t, T) : n * t / T;
   };
-  for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) {
+  auto block = [&](std::int64_t lo, std::int64_t hi) {
     if (gather) {
       accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
                     p.inv_inertia.data(), p.ax.data(), p.ay.data(), p.alpha.data());
@@ -164,10 +163,14 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
         damp(st.local_damping, lo, hi, p.ax.data(), p.ay.data(), p.alpha.data(), p.vx.data(),
              p.vy.data(), p.omega.data());
     }
-    part[t] = kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
-                         p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(),
-                         p.alpha.data(), x_at_rebuild.data(), y_at_rebuild.data());
-  }, boundary);
+    return kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
+                      p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(), p.alpha.data(),
+                      x_at_rebuild.data(), y_at_rebuild.data());
+  };
+  if (st.threads <= 1) return block(0, n);  // without a per-thread array to set up each step
+  Motion part[kMaxThreads];
+  for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) { part[t] = block(lo, hi); },
+             boundary);
   Motion total = part[0];
   for (int t = 1; t < st.threads; ++t) total = Motion::merge(total, part[t]);
   return total;

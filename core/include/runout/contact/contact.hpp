@@ -85,7 +85,10 @@ struct ContactModel {
     std::vector<typename Rolling::Params> rolling;
   };
   static Tables tables(const std::vector<PairCoefficients>& rows) {
-    Tables t;
+    Tables t;  // built every force pass: one allocation per law, not one per growth
+    t.normal.reserve(rows.size());
+    t.tangential.reserve(rows.size());
+    t.rolling.reserve(rows.size());
     for (const auto& c : rows) {
       t.normal.push_back(Normal::params(c));
       t.tangential.push_back(Tangential::params(c));
