@@ -13,13 +13,10 @@ namespace runout::phases {
 namespace {
 
 // Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread; block t
-// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = n).
+// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = n). One thread calls its
+// body directly instead (advance).
 template <class Body, class Boundary>
 void for_blocks(std::int64_t n, int threads, const Body& body, const Boundary& boundary) {
-  if (threads <= 1) {
-    body(0, n, 0);
-    return;
-  }
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), T = omp_get_num_threads();

@@ -76,6 +76,10 @@ void png_no_flush(png_structp) {}
   png_longjmp(png, 1);
 }
 
+// A frame's image data is deflated in up to this many strips side by side (fixed by the height,
+// so a frame's bytes do not depend on the machine).
+constexpr int kPngStrips = 4;
+
 // One horizontal strip of a PNG's image data: its rows filtered (Up) and deflated as a raw
 // DEFLATE piece that ends on a byte boundary (the pigz construction, with zlib's own calls),
 // and the Adler-32 of its filtered bytes, which zlib can combine across strips.
@@ -132,7 +136,8 @@ void deflate_strip(const Image& image, int channels, int y0, int y1, bool last, 
     const bool end = y + rows >= y1;
     // A strip that is not the last ends with a sync flush: every block so far is non-final and
     // the piece ends on a byte boundary, so the next strip's blocks can follow it directly.
-    if (deflate(&z, end ? (last ? Z_FINISH : Z_SYNC_FLUSH) : Z_NO_FLUSH) == Z_STREAM_ERROR || z.avail_in != 0) {
+    const int r = deflate(&z, end ? (last ? Z_FINISH : Z_SYNC_FLUSH) : Z_NO_FLUSH);
+    if (r == Z_STREAM_ERROR || z.avail_in != 0 || (end && last && r != Z_STREAM_END)) {
       strip.error = "zlib: deflate failed";
       break;
     }

@@ -46,10 +46,8 @@ struct Image {
 };
 
 // PNG encoding tuned for speed (zlib level 1, the Up filter, run-length strategy): files a few
-// per cent smaller than libpng's defaults at a quarter of the time on this machine. A frame's
-// image data is deflated in up to kPngStrips strips side by side (fixed by the height, so the
-// bytes do not depend on the machine). With `keep_alpha` false the alpha channel is dropped.
-inline constexpr int kPngStrips = 4;
+// per cent smaller than libpng's defaults at a quarter of the time on this machine; a frame's
+// strips of rows are deflated side by side. With `keep_alpha` false the alpha channel is dropped.
 std::string encode_png(const Image& image, bool keep_alpha);
 // Written atomically (temp file + rename). Throws IoError naming the path.
 void write_png(const std::string& path, const Image& image, bool keep_alpha = false);
