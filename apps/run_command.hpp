@@ -75,6 +75,12 @@ struct DeriveOptions {
 // `runout derive` (derive_command.cpp): the setup table of SPEC §3-4 for a scene.
 int derive_command(const DeriveOptions& o);
 
+struct KeysOptions {
+  bool json = false;
+};
+// `runout keys` (keys_command.cpp): every scene key with its range, default and meaning.
+int keys_command(const KeysOptions& o);
+
 struct PlotOptions {
   std::string dir;   // a sweep folder
   std::string out;   // default DIR/figures

@@ -100,6 +100,10 @@ int main(int argc, char** argv) {
   derive_cmd->add_option("--set", derive.overrides, "override a scene key")->take_all()->allow_extra_args(false);
   derive_cmd->add_flag("--json", derive.json, "print JSON instead of the table");
 
+  runout::app::KeysOptions keys;
+  auto* keys_cmd = cli.add_subcommand("keys", "list every scene key with what it allows, its default and its meaning");
+  keys_cmd->add_flag("--json", keys.json, "print JSON instead of the table");
+
   runout::app::RenderOptions render;
   auto* render_cmd = cli.add_subcommand("render", "draw a checkpoint (e.g. OUT/checkpoint.bin) as a PNG, PDF or SVG");
   render_cmd->add_option("checkpoint", render.checkpoint, "checkpoint file")->required()->check(CLI::ExistingFile);
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return runout::app::bench_command(bench);
     if (*render_cmd) return runout::app::render_command(render);
     if (*derive_cmd) return runout::app::derive_command(derive);
+    if (*keys_cmd) return runout::app::keys_command(keys);
     if (*study_cmd) return runout::app::study_command(study);
     if (*plot_cmd) {
       plot.self = std::filesystem::canonical("/proc/self/exe").string();

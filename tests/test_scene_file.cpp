@@ -222,5 +222,25 @@ TEST(SceneFile, ExampleScenesAllRead) {
   EXPECT_NO_THROW(io::read_scene(io::embedded_quick_scene(), "<embedded>"));
 }
 
+// `runout keys` lists every flat key with its default: set each listed key to its listed
+// default and the scene must be the default one; set it just outside its listed range and
+// the reader must refuse it, naming the key.
+TEST(SceneFile, ListedKeysAndDefaultsAreTheReadersOwn) {
+  const std::string base = kGood;
+  const std::string expected = io::write_scene(io::read_scene(base, "base.toml"));
+  const auto keys = io::scene_keys();
+  ASSERT_GE(keys.size(), 40u);
+  for (const auto& k : keys) {
+    if (k.key.rfind("avalanche.", 0) == 0) continue;  // kGood sets incline_length
+    const SceneDef s = io::read_scene(base, "base.toml", {io::parse_override(k.key + "=" + k.default_value)});
+    EXPECT_EQ(io::write_scene(s), expected) << k.key;
+    if (k.allowed.rfind("number in ", 0) == 0 && k.allowed.find("inf") == std::string::npos) {
+      const std::string range = k.allowed.substr(10);
+      const double hi = std::stod(range.substr(range.find(", ") + 2));
+      expect_error(base, {k.key, range}, {io::parse_override(k.key + "=" + std::to_string(hi * 1.5 + 1))});
+    }
+  }
+}
+
 }  // namespace
 }  // namespace runout

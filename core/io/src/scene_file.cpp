@@ -1,190 +1,22 @@
+// Reading a scene file: TOML (toml++) into SceneDef, --set overrides applied first, every key
+// checked against its list (scene_keys.hpp) or, for the tables with structure, here.
 #include "runout/io/scene_file.hpp"
 
 #include <toml++/toml.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
-#include <limits>
-#include <set>
-#include <utility>
 #include <sstream>
+#include <utility>
 
 #include "runout/contact/registry.hpp"
 #include "runout/errors.hpp"
 #include "runout/io/files.hpp"
 #include "runout/size_distribution.hpp"
+#include "table_reader.hpp"
 
 namespace runout::io {
 
 namespace {
-
-// The names of output.series, read and written from this one list.
-constexpr std::pair<const char*, bool SeriesSelection::*> kSeriesNames[] = {
-    {"energy", &SeriesSelection::energy}, {"segregation", &SeriesSelection::segregation},
-    {"basal_spin", &SeriesSelection::basal_spin}, {"front", &SeriesSelection::front},
-    {"overlap", &SeriesSelection::overlap}};
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The shortest text that reads back as the same double (the -0.1 a user typed is "-0.1", not
-// -0.10000000000000001, and no two different values print alike); whole numbers in full.
-std::string format_number(double v) {
-  char buf[48];
-  if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) {
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-
-// A numeric interval with open or closed ends, printed the way a user reads it: "(0, 1]".
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-  bool contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
-  std::string text() const {
-    auto end = [](double v) { return std::isinf(v) ? std::string(v < 0 ? "-inf" : "inf") : format_number(v); };
-    return std::string(lo_open || std::isinf(lo) ? "(" : "[") + end(lo) + ", " + end(hi) +
-           (hi_open || std::isinf(hi) ? ")" : "]");
-  }
-};
-Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-Range positive(double hi = kInf) { return {0, hi, true, false}; }
-
-// Reads one TOML table into plain structs, remembering which keys it used; finish() rejects the
-// rest. Every error names the file and the full dotted key.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string path, const std::string& source)
-      : table_(table), path_(std::move(path)), source_(source) {}
-
-  std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
-  [[noreturn]] void fail(const std::string& k, const std::string& what) const {
-    throw ConfigError(source_, key(k), what);
-  }
-  bool has(const std::string& k) const { return table_.contains(k); }
-  const toml::node* node(const std::string& k) {
-    used_.insert(k);
-    return table_.get(k);
-  }
-
-  void number(const std::string& k, double& out, Range range) {
-    const toml::node* n = node(k);
-    if (!n) return;
-    if (!n->is_number()) fail(k, "expected a number in " + range.text() + ", got " + type_name(*n));
-    const double v = n->is_integer() ? static_cast<double>(n->as_integer()->get())
-                                     : n->as_floating_point()->get();
-    if (!std::isfinite(v) || !range.contains(v))
-      fail(k, "value " + format_number(v) + " is out of the allowed range " + range.text());
-    out = v;
-  }
-  template <class Int>
-  void integer(const std::string& k, Int& out, double lo, double hi) {
-    const toml::node* n = node(k);
-    if (!n) return;
-    const Range range = closed(lo, hi);
-    if (!n->is_integer()) fail(k, "expected an integer in " + range.text() + ", got " + type_name(*n));
-    const auto v = n->as_integer()->get();
-    if (v < lo || v > hi) fail(k, "value " + std::to_string(v) + " is out of the allowed range " + range.text());
-    out = static_cast<Int>(v);
-  }
-  void boolean(const std::string& k, bool& out) {
-    const toml::node* n = node(k);
-    if (!n) return;
-    if (!n->is_boolean()) fail(k, "expected true or false, got " + type_name(*n));
-    out = n->as_boolean()->get();
-  }
-  void string(const std::string& k, std::string& out) {
-    const toml::node* n = node(k);
-    if (!n) return;
-    if (!n->is_string()) fail(k, "expected a string, got " + type_name(*n));
-    out = n->as_string()->get();
-  }
-  template <class Enum>
-  void choice(const std::string& k, Enum& out,
-              const std::vector<std::pair<std::string, Enum>>& options) {
-    std::string s;
-    const bool present = has(k);
-    string(k, s);
-    if (!present) return;
-    std::string allowed;
-    for (const auto& [name, value] : options) {
-      if (name == s) { out = value; return; }
-      allowed += (allowed.empty() ? "" : ", ") + ("\"" + name + "\"");
-    }
-    fail(k, "\"" + s + "\" is not one of " + allowed);
-  }
-  const toml::table* subtable(const std::string& k) {
-    const toml::node* n = node(k);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(k, "expected a table, got " + type_name(*n));
-    return n->as_table();
-  }
-  const toml::array* array(const std::string& k) {
-    const toml::node* n = node(k);
-    if (!n) return nullptr;
-    if (!n->is_array()) fail(k, "expected an array, got " + type_name(*n));
-    return n->as_array();
-  }
-  void finish() const {
-    for (auto&& [k, v] : table_) {
-      const std::string name(k.str());
-      if (!used_.count(name)) fail(name, "unknown key" + suggestion());
-    }
-  }
-  void allow(std::initializer_list<const char*> keys, std::string hint) {
-    hint_ = std::move(hint);
-    for (auto k : keys) known_.emplace_back(k);
-  }
-
-  static std::string type_name(const toml::node& n) {
-    switch (n.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a number";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date or time";
-    }
-  }
-
- private:
-  std::string suggestion() const {
-    if (known_.empty()) return "";
-    std::string s = " (allowed here: ";
-    for (size_t i = 0; i < known_.size(); ++i) s += (i ? ", " : "") + known_[i];
-    return s + ")";
-  }
-  const toml::table& table_;
-  std::string path_;
-  const std::string& source_;
-  std::set<std::string> used_;
-  std::vector<std::string> known_;
-  std::string hint_;
-};
-
-// The contact laws' names come from their registry (contact/registry.hpp).
-template <class Laws>
-std::vector<std::pair<std::string, std::string>> law_choices() {
-  std::vector<std::pair<std::string, std::string>> v;
-  for (const auto& name : Laws::names()) v.emplace_back(name, name);
-  return v;
-}
-const std::vector<std::pair<std::string, WallInside>> kWallSides = {
-    {"left", WallInside::left}, {"right", WallInside::right}, {"both", WallInside::both}};
-const std::vector<std::pair<std::string, SizeDistribution>> kDistributions = {
-    {"uniform", SizeDistribution::uniform}, {"lognormal", SizeDistribution::lognormal}};
-const std::vector<std::pair<std::string, IntegratorKind>> kIntegrators = {
-    {"symplectic_euler", IntegratorKind::symplectic_euler},
-    {"velocity_verlet", IntegratorKind::velocity_verlet}};
 
 // Applies one --set to the parsed document.
 void apply_override(toml::table& root, const Override& o, const std::string& source) {
@@ -266,54 +98,18 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
              "rest", "output", "walls", "particles"}, "");
   top.string("name", s.name);
 
-  if (auto t = top.subtable("material")) {
-    TableReader r(*t, "material", source);
-    r.allow({"density", "friction", "wall_friction", "restitution", "wall_restitution"}, "");
-    r.number("density", s.material.density, positive());
-    r.number("friction", s.material.friction, closed(0, 100));
-    r.number("wall_friction", s.material.wall_friction, closed(0, 100));
-    // e_n below 0.01 means nothing numerically: Walton–Braun's loading slope e_n^2 k_U falls
-    // under 1e-4 of its unloading one, and the dashpot laws' damping (designed by simulating
-    // collisions, derive.cpp) grows without bound as e_n goes to 0.
-    r.number("restitution", s.material.restitution, closed(0.01, 1));
-    r.number("wall_restitution", s.material.wall_restitution, closed(0.01, 1));
-    r.finish();
-  }
-  if (auto t = top.subtable("contact")) {
-    TableReader r(*t, "contact", source);
-    r.allow({"normal_model", "tangential_model", "rolling_model", "design_impact_speed",
-             "design_max_overlap", "stiffness_ratio", "rolling_friction", "rolling_damping",
-             "overlap_guard"}, "");
-    r.choice("normal_model", s.contact.normal_model, law_choices<NormalLaws>());
-    r.choice("tangential_model", s.contact.tangential_model, law_choices<TangentialLaws>());
-    r.choice("rolling_model", s.contact.rolling_model, law_choices<RollingLaws>());
-    r.number("rolling_friction", s.contact.rolling_friction, closed(0, 10));
-    r.number("rolling_damping", s.contact.rolling_damping, closed(0, 10));
-    // A law may be defined only with one normal law (its registry row says which).
-    TangentialLaws::with(s.contact.tangential_model, [&](auto law) {
-      using Law = decltype(law);
-      if constexpr (requires { Law::kNormalLaw; })
-        if (s.contact.normal_model != Law::kNormalLaw)
-          r.fail("tangential_model", "\"" + s.contact.tangential_model + "\" needs contact.normal_model = \"" +
-                                         Law::kNormalLaw + "\" (it is \"" + s.contact.normal_model + "\")");
-    });
-    r.number("design_impact_speed", s.contact.design_impact_speed, positive(1e6));
-    r.number("design_max_overlap", s.contact.design_max_overlap, {0, 0.5, true, false});
-    r.number("stiffness_ratio", s.contact.stiffness_ratio, {0, 10, true, false});
-    r.number("overlap_guard", s.contact.overlap_guard, {0, 1, true, false});
-    r.finish();
-  }
-  if (auto t = top.subtable("integration")) {
-    TableReader r(*t, "integration", source);
-    r.allow({"integrator", "dt_fraction", "skin", "gravity"}, "");
-    r.choice("integrator", s.integration.integrator, kIntegrators);
-    // Below 1e-4 of tau_min a collision takes over 60,000 steps and a run never ends in
-    // practice (the stability limit, 1/pi, is checked with the setup).
-    r.number("dt_fraction", s.integration.dt_fraction, closed(1e-4, 1));
-    r.number("skin", s.integration.skin, {0, 10, true, false});
-    r.number("gravity", s.integration.gravity, positive(1e4));
-    r.finish();
-  }
+  read_section(top, "material", source, [&](auto& v) { material_keys(s.material, v); });
+  read_section(top, "contact", source, [&](auto& v) { contact_keys(s.contact, v); });
+  // A law may be defined only with one normal law (its registry row says which).
+  TangentialLaws::with(s.contact.tangential_model, [&](auto law) {
+    using Law = decltype(law);
+    if constexpr (requires { Law::kNormalLaw; })
+      if (s.contact.normal_model != Law::kNormalLaw)
+        throw ConfigError(source, "contact.tangential_model",
+                          "\"" + s.contact.tangential_model + "\" needs contact.normal_model = \"" +
+                              Law::kNormalLaw + "\" (it is \"" + s.contact.normal_model + "\")");
+  });
+  read_section(top, "integration", source, [&](auto& v) { integration_keys(s.integration, v); });
   if (auto t = top.subtable("species")) {
     for (auto&& [k, v] : *t) {
       const std::string name(k.str());
@@ -343,18 +139,9 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
         throw ConfigError(source, "species." + s.species[b].name,
                           "is declared twice (a distribution's classes are named NAME_1 .. NAME_N)");
 
-  if (auto t = top.subtable("avalanche")) {
+  if (top.has("avalanche")) {
     AvalancheDef a;
-    TableReader r(*t, "avalanche", source);
-    r.allow({"incline_angle", "incline_length", "pile_width", "floor_length", "wall_height",
-             "reference_large_count"}, "");
-    r.number("incline_angle", a.incline_angle_deg, {0, 90, true, true});
-    r.number("incline_length", a.incline_length, {0, 1e5, false, false});
-    r.number("pile_width", a.pile_width, {0, 1e5, true, false});
-    r.number("floor_length", a.floor_length, {0, 1e6, true, false});
-    r.number("wall_height", a.wall_height, {0, 1e6, true, false});
-    r.integer("reference_large_count", a.reference_large_count, 1, 1e6);
-    r.finish();
+    read_section(top, "avalanche", source, [&](auto& v) { avalanche_keys(a, v); });
     s.avalanche = a;
     double share = 0;
     for (const auto& sp : s.species) share += sp.area_share;
@@ -363,58 +150,9 @@ SceneDef read_document(const toml::table& root, const std::string& source) {
                         "the area shares of an avalanche's species must add up to 1 (they add up to " +
                             format_number(share) + ")");
   }
-  if (auto t = top.subtable("preparation")) {
-    TableReader r(*t, "preparation", source);
-    r.allow({"seed", "initial_packing", "initial_speed", "growth_time", "settle_ek_threshold",
-             "settle_hold", "settle_max_time", "damping"}, "");
-    std::int64_t seed = static_cast<std::int64_t>(s.preparation.seed);
-    r.integer("seed", seed, 0, 9.2e18);
-    s.preparation.seed = static_cast<std::uint64_t>(seed);
-    r.number("initial_packing", s.preparation.initial_packing, {0, 0.9, true, false});
-    r.number("initial_speed", s.preparation.initial_speed, closed(0, 100));
-    r.number("growth_time", s.preparation.growth_time, {0, 1e4, true, false});
-    r.number("settle_ek_threshold", s.preparation.settle_ek_threshold, {0, 1, true, false});
-    r.number("settle_hold", s.preparation.settle_hold, closed(0, 1e4));
-    r.number("settle_max_time", s.preparation.settle_max_time, {0, 1e6, true, false});
-    r.number("damping", s.preparation.damping, {0, 1, false, true});
-    r.finish();
-  }
-  if (auto t = top.subtable("rest")) {
-    TableReader r(*t, "rest", source);
-    r.allow({"ek_threshold", "hold", "max_time"}, "");
-    r.number("ek_threshold", s.rest.ek_threshold, {0, 1, true, false});
-    r.number("hold", s.rest.hold, closed(0, 1e4));
-    r.number("max_time", s.rest.max_time, {0, 1e7, true, false});
-    r.finish();
-  }
-  if (auto t = top.subtable("output")) {
-    TableReader r(*t, "output", source);
-    r.allow({"series", "timeseries_every", "checkpoint_every", "dump_every", "vtk_every", "end_time",
-             "basal_layer_packing"}, "");
-    if (const toml::array* list = r.array("series")) {
-      s.output.series = {false, false, false, false, false};
-      for (const auto& item : *list) {
-        const auto* name = item.as_string();
-        bool SeriesSelection::*flag = nullptr;
-        std::string allowed;
-        for (const auto& [n, f] : kSeriesNames) {
-          if (name && n == name->get()) flag = f;
-          allowed += (allowed.empty() ? "\"" : ", \"") + std::string(n) + "\"";
-        }
-        if (!flag)
-          r.fail("series", (name ? "\"" + std::string(name->get()) + "\"" : std::string("an item")) +
-                               " is not one of " + allowed);
-        s.output.series.*flag = true;
-      }
-    }
-    r.number("timeseries_every", s.output.timeseries_every, {0, 1e6, true, false});
-    r.number("checkpoint_every", s.output.checkpoint_every, closed(0, 1e7));
-    r.number("dump_every", s.output.dump_every, closed(0, 1e7));
-    r.number("vtk_every", s.output.vtk_every, closed(0, 1e7));
-    r.number("end_time", s.output.end_time, closed(0, 1e7));
-    r.number("basal_layer_packing", s.output.basal_layer_packing, {0, 1, true, false});
-    r.finish();
-  }
+  read_section(top, "preparation", source, [&](auto& v) { preparation_keys(s.preparation, v); });
+  read_section(top, "rest", source, [&](auto& v) { rest_keys(s.rest, v); });
+  read_section(top, "output", source, [&](auto& v) { output_keys(s.output, v); });
 
   auto species_index = [&](const std::string& name, const std::string& key) {
     for (size_t k = 0; k < s.species.size(); ++k)
@@ -513,177 +251,6 @@ SceneDef read_scene_file(const std::string& path, const std::vector<Override>& o
     throw ConfigError(path, "(file)", e.what());
   }
   return read_scene(text, path, overrides);
-}
-
-const char* to_string(IntegratorKind k) {
-  for (const auto& [name, value] : kIntegrators)
-    if (value == k) return name.c_str();
-  return "?";
-}
-const char* to_string(SizeDistribution d) {
-  for (const auto& [name, value] : kDistributions)
-    if (value == d) return name.c_str();
-  return "spread";
-}
-
-namespace {
-
-toml::table physics_tables(const SceneDef& s, bool include_rest) {
-  toml::table root;
-  root.insert("name", s.name);
-  root.insert("material", toml::table{{"density", s.material.density},
-                                      {"friction", s.material.friction},
-                                      {"wall_friction", s.material.wall_friction},
-                                      {"restitution", s.material.restitution},
-                                      {"wall_restitution", s.material.wall_restitution}});
-  root.insert("contact", toml::table{{"normal_model", s.contact.normal_model},
-                                     {"tangential_model", s.contact.tangential_model},
-                                     {"rolling_model", s.contact.rolling_model},
-                                     {"rolling_friction", s.contact.rolling_friction},
-                                     {"rolling_damping", s.contact.rolling_damping},
-                                     {"design_impact_speed", s.contact.design_impact_speed},
-                                     {"design_max_overlap", s.contact.design_max_overlap},
-                                     {"stiffness_ratio", s.contact.stiffness_ratio},
-                                     {"overlap_guard", s.contact.overlap_guard}});
-  root.insert("integration", toml::table{{"integrator", to_string(s.integration.integrator)},
-                                         {"dt_fraction", s.integration.dt_fraction},
-                                         {"skin", s.integration.skin},
-                                         {"gravity", s.integration.gravity}});
-  toml::table species;
-  for (const auto& sp : s.species) {
-    if (sp.distribution == SizeDistribution::spread) {
-      species.insert(sp.name, toml::table{{"diameter", sp.diameter},
-                                          {"spread", sp.spread},
-                                          {"area_share", sp.area_share}});
-      continue;
-    }
-    // A class is written as a one-class distribution: it reads back as itself.
-    toml::table t{{"distribution", to_string(sp.distribution)},
-                  {"min", sp.min_diameter},
-                  {"max", sp.max_diameter},
-                  {"area_share", sp.area_share}};
-    if (sp.distribution == SizeDistribution::lognormal) {
-      t.insert("median", sp.median);
-      t.insert("sigma", sp.sigma);
-    }
-    species.insert(sp.name, t);
-  }
-  root.insert("species", species);
-  if (s.avalanche) {
-    const auto& a = *s.avalanche;
-    root.insert("avalanche", toml::table{{"incline_angle", a.incline_angle_deg},
-                                         {"incline_length", a.incline_length},
-                                         {"pile_width", a.pile_width},
-                                         {"floor_length", a.floor_length},
-                                         {"wall_height", a.wall_height},
-                                         {"reference_large_count", a.reference_large_count}});
-    const auto& p = s.preparation;
-    root.insert("preparation", toml::table{{"seed", static_cast<std::int64_t>(p.seed)},
-                                           {"initial_packing", p.initial_packing},
-                                           {"initial_speed", p.initial_speed},
-                                           {"growth_time", p.growth_time},
-                                           {"settle_ek_threshold", p.settle_ek_threshold},
-                                           {"settle_hold", p.settle_hold},
-                                           {"settle_max_time", p.settle_max_time},
-                                           {"damping", p.damping}});
-  }
-  if (include_rest) {
-    root.insert("rest", toml::table{{"ek_threshold", s.rest.ek_threshold},
-                                    {"hold", s.rest.hold},
-                                    {"max_time", s.rest.max_time}});
-    toml::array series;
-    for (const auto& [name, flag] : kSeriesNames)
-      if (s.output.series.*flag) series.push_back(name);
-    root.insert("output", toml::table{{"series", series},
-                                      {"timeseries_every", s.output.timeseries_every},
-                                      {"checkpoint_every", s.output.checkpoint_every},
-                                      {"dump_every", s.output.dump_every},
-                                      {"vtk_every", s.output.vtk_every},
-                                      {"end_time", s.output.end_time},
-                                      {"basal_layer_packing", s.output.basal_layer_packing}});
-  }
-  return root;
-}
-
-// The whole scene as a table: what scene.resolved.toml says and the physics key is made of.
-toml::table scene_table(const SceneDef& s) {
-  toml::table root = physics_tables(s, true);
-  if (!s.walls.empty()) {
-    toml::array walls;
-    for (const auto& w : s.walls) {
-      toml::array pts;
-      for (const auto& [x, y] : w.points) pts.push_back(toml::array{x, y});
-      const char* inside = "both";
-      for (const auto& [name, value] : kWallSides)
-        if (value == w.inside) inside = name.c_str();
-      walls.push_back(toml::table{{"name", w.name}, {"points", pts}, {"bed", w.bed}, {"inside", inside}});
-    }
-    root.insert("walls", walls);
-  }
-  if (!s.particles.empty()) {
-    toml::array parts;
-    for (const auto& p : s.particles)
-      parts.push_back(toml::table{{"species", s.species[p.species].name}, {"x", p.x}, {"y", p.y},
-                                  {"vx", p.vx}, {"vy", p.vy}, {"omega", p.omega},
-                                  {"diameter", p.diameter}});
-    root.insert("particles", parts);
-  }
-  return root;
-}
-
-std::string format_scene(const toml::table& root) {
-  std::ostringstream out;
-  out << "# Every value this run used, defaults included (runout scene.resolved.toml)\n";
-  out << toml::toml_formatter(root, toml::toml_formatter::default_flags &
-                                        ~toml::format_flags::allow_literal_strings)
-      << "\n";
-  return out.str();
-}
-
-}  // namespace
-
-std::string write_scene(const SceneDef& s) { return format_scene(scene_table(s)); }
-
-std::uint64_t physics_key(const SceneDef& scene) {
-  SceneDef s = scene;
-  s.rest = RestDef{};
-  s.output = OutputDef{};
-  s.name.clear();
-  toml::table root = scene_table(s);
-  // The key is the text of the scene with its output settings at their defaults, so an output
-  // key added later would change every key and orphan the checkpoints written before it (a run
-  // could no longer be resumed or drawn). Keys added to [output] since are left out of it.
-  for (const char* added : {"vtk_every"}) root["output"].as_table()->erase(added);
-  return fnv1a64(format_scene(root));
-}
-
-std::string pile_key_text(const SceneDef& s) {
-  toml::table root = physics_tables(s, false);
-  root.erase("name");
-  // The skin changes the cost, never the trajectory (tests/test_neighbors.cpp), so piles
-  // settled with any skin are shared.
-  root["integration"].as_table()->erase("skin");
-  std::ostringstream out;
-  out << root;
-  return out.str();
-}
-
-}  // namespace runout::io
-
-namespace runout::io {
-
-const std::string& embedded_quick_scene() {
-  static const std::string text =
-#include "quick_scene.inc"
-      ;
-  return text;
-}
-
-const std::string& embedded_bench_scene() {
-  static const std::string text =
-#include "thesis_4_40_scene.inc"
-      ;
-  return text;
 }
 
 }  // namespace runout::io

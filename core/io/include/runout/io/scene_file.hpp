@@ -40,6 +40,14 @@ const std::string& embedded_quick_scene();
 // The bench scene: the thesis pile D/d = 4, %A_p = 40 (examples/thesis_4_40.toml).
 const std::string& embedded_bench_scene();
 
+// One key of a scene's flat tables with what it allows, its default and its meaning, from the
+// one list the reader and the writer use (`runout keys`). [species.NAME], [[walls]] and
+// [[particles]] have structure: the README's "Scene files" describes them.
+struct SceneKey {
+  std::string key, allowed, default_value, meaning;
+};
+std::vector<SceneKey> scene_keys();
+
 const char* to_string(IntegratorKind k);
 const char* to_string(SizeDistribution d);
 
