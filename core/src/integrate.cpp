@@ -12,11 +12,11 @@ namespace runout::phases {
 
 namespace {
 
-// Runs body(begin, end, thread) over contiguous blocks of [0, n), one per thread; block t
-// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = n). One thread calls its
-// body directly instead (advance).
+// Runs body(begin, end, thread) over contiguous blocks of the discs, one per thread; block t
+// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = the disc count). One thread
+// calls its body directly instead (advance).
 template <class Body, class Boundary>
-void for_blocks(std::int64_t n, int threads, const Body& body, const Boundary& boundary) {
+void for_blocks(int threads, const Body& body, const Boundary& boundary) {
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), T = omp_get_num_threads();
@@ -166,7 +166,7 @@ Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
   };
   if (st.threads <= 1) return block(0, n);  // without a per-thread array to set up each step
   Motion part[kMaxThreads];
-  for_blocks(n, st.threads, [&](std::int64_t lo, std::int64_t hi, int t) { part[t] = block(lo, hi); },
+  for_blocks(st.threads, [&](std::int64_t lo, std::int64_t hi, int t) { part[t] = block(lo, hi); },
              boundary);
   Motion total = part[0];
   for (int t = 1; t < st.threads; ++t) total = Motion::merge(total, part[t]);

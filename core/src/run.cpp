@@ -9,28 +9,31 @@
 
 namespace runout {
 
+namespace {
+
+// One stored value of a run state (RunState::for_each_stored) into a checkpoint's bytes.
+template <class T>
+void put_field(ByteWriter& w, const T& v) {
+  if constexpr (std::is_same_v<T, bool>) w.put(static_cast<std::uint8_t>(v));
+  else if constexpr (requires { v.size(); }) w.put_vector(v);
+  else w.put(v);
+}
+template <class T>
+void get_field(ByteReader& r, T& v) {
+  if constexpr (std::is_same_v<T, bool>) v = r.get<std::uint8_t>() != 0;
+  else if constexpr (requires { v.size(); }) v = r.get_vector<typename T::value_type>();
+  else v = r.get<T>();
+}
+
+}  // namespace
+
 std::string encode_run_state(const RunState& s) {
   ByteWriter w;
-  w.put(static_cast<std::uint8_t>(s.ledger));
-  w.put(s.ep0); w.put(s.energy_reference_y);
-  w.put(s.com_release.x()); w.put(s.com_release.y());
-  w.put(s.top_release.top_x); w.put(s.top_release.top_y);
-  w.put(s.below_since); w.put(s.peak_ek); w.put(s.t_star_peak_ek); w.put(s.next_sample);
-  w.put(s.wall_seconds);
-  w.put(s.energy_total0); w.put(s.committed0); w.put(s.dissipated_normal0); w.put(s.dissipated_friction0);
-  w.put(s.dissipated_rolling0);
-  w.put(s.worst_residual);
-  w.put(s.max_overlap);
-  w.put_vector(s.series);
-  w.put(static_cast<std::uint8_t>(s.series_ends_with_end_row));
-  w.put(static_cast<std::uint8_t>(s.rest_frozen));
+  auto put = [&](const char*, const auto& v, bool) { put_field(w, v); };
+  RunState::for_each_stored(s, put);
   if (s.rest_frozen) {
-    const Particles& p = s.rest_particles;
-    w.put(s.t_star_rest);
-    w.put(s.rest_sample);
-    for (const auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass}) w.put_vector(*v);
-    w.put_vector(p.species);
-    w.put_vector(p.id);
+    RunState::for_each_stored_at_rest(s, put);
+    Particles::for_each_deposit(s.rest_particles, [&](const char*, const auto& v) { w.put_vector(v); });
   }
   return w.bytes();
 }
@@ -38,46 +41,30 @@ std::string encode_run_state(const RunState& s) {
 RunState decode_run_state(const std::string& bytes, const std::string& name) {
   ByteReader r(bytes, name);
   RunState s;
-  s.ledger = r.get<std::uint8_t>() != 0;
-  s.ep0 = r.get<double>(); s.energy_reference_y = r.get<double>();
-  s.com_release.x() = r.get<double>(); s.com_release.y() = r.get<double>();
-  s.top_release.top_x = r.get<double>(); s.top_release.top_y = r.get<double>();
-  s.below_since = r.get<double>(); s.peak_ek = r.get<double>();
-  s.t_star_peak_ek = r.get<double>(); s.next_sample = r.get<double>();
-  s.wall_seconds = r.get<double>();
-  s.energy_total0 = r.get<double>(); s.committed0 = r.get<double>();
-  s.dissipated_normal0 = r.get<double>(); s.dissipated_friction0 = r.get<double>();
-  s.dissipated_rolling0 = r.get<double>();
-  s.worst_residual = r.get<double>();
-  s.max_overlap = r.get<double>();
-  s.series = r.get_vector<TimeseriesRow>();
-  s.series_ends_with_end_row = r.get<std::uint8_t>() != 0;
-  if (s.series_ends_with_end_row && s.series.empty())
-    throw IoError(name + ": checkpoint is corrupt (time series)");
-  s.rest_frozen = r.get<std::uint8_t>() != 0;
-  if (s.rest_frozen) {
-    Particles& p = s.rest_particles;
-    s.t_star_rest = r.get<double>();
-    s.rest_sample = r.get<TimeseriesRow>();
-    for (auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass}) *v = r.get_vector<double>();
-    p.species = r.get_vector<std::int32_t>();
-    p.id = r.get_vector<std::int64_t>();
-    for (const auto* v : {&p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass})
-      if (v->size() != p.x.size()) throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
-    if (p.species.size() != p.x.size() || p.id.size() != p.x.size())
-      throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
-    for (const auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.omega, &p.radius, &p.mass})
-      for (double x : *v)
-        if (!std::isfinite(x)) throw IoError(name + ": checkpoint is corrupt (deposit at rest)");
-  }
+  auto corrupt = [&](const std::string& what) { throw IoError(name + ": checkpoint is corrupt (" + what + ")"); };
   // The samples may hold undefined measurements (NaN, written as empty); the run's own
   // bookkeeping may not.
-  for (double v : {s.ep0, s.energy_reference_y, s.com_release.x(), s.com_release.y(),
-                   s.top_release.top_x, s.top_release.top_y, s.below_since, s.peak_ek,
-                   s.t_star_peak_ek, s.next_sample, s.wall_seconds, s.energy_total0, s.committed0,
-                   s.dissipated_normal0, s.dissipated_friction0, s.dissipated_rolling0, s.t_star_rest})
-    if (!std::isfinite(v)) throw IoError(name + ": checkpoint is corrupt (run state)");
-  if (s.ep0 < 0) throw IoError(name + ": checkpoint is corrupt (run state)");
+  auto get = [&](const char*, auto& v, bool bookkeeping) {
+    get_field(r, v);
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>)
+      if (bookkeeping && !std::isfinite(v)) corrupt("run state");
+  };
+  RunState::for_each_stored(s, get);
+  if (s.series_ends_with_end_row && s.series.empty()) corrupt("time series");
+  if (s.rest_frozen) {
+    RunState::for_each_stored_at_rest(s, get);
+    Particles& p = s.rest_particles;
+    Particles::for_each_deposit(p, [&](const char*, auto& v) {
+      v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
+    });
+    Particles::for_each_deposit(p, [&](const char*, const auto& v) {
+      if (v.size() != p.x.size()) corrupt("deposit at rest");
+      if constexpr (std::is_same_v<typename std::decay_t<decltype(v)>::value_type, double>)
+        for (double x : v)
+          if (!std::isfinite(x)) corrupt("deposit at rest");
+    });
+  }
+  if (s.ep0 < 0) corrupt("run state");
   return s;
 }
 
@@ -234,9 +221,10 @@ bool AvalancheRun::finished() {
 void AvalancheRun::freeze_rest() {
   const Particles& p = world_.particles();
   Particles& f = state_.rest_particles;
-  f = Particles{};
-  f.x = p.x; f.y = p.y; f.vx = p.vx; f.vy = p.vy; f.omega = p.omega;
-  f.radius = p.radius; f.mass = p.mass; f.species = p.species; f.id = p.id;
+  f = p;
+  Particles::for_each_array(f, [](const char* name, auto& v) {
+    if (!Particles::in_deposit(name)) v.clear();
+  });
   state_.rest_sample = sample();
   state_.t_star_rest = state_.below_since;
   state_.rest_frozen = true;

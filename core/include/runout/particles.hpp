@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace runout {
@@ -30,6 +31,20 @@ struct Particles {
     f("angle", p.angle); f("ax", p.ax); f("ay", p.ay); f("alpha", p.alpha);
     f("radius", p.radius); f("mass", p.mass); f("inv_inertia", p.inv_inertia);
     f("species", p.species); f("id", p.id);
+  }
+  // The arrays a deposit's measurements read (SPEC §6): what a run keeps of the discs when
+  // the mass first came to rest (run.hpp), in for_each_stored's order, without the
+  // accelerations, the angle and the inertia.
+  static bool in_deposit(std::string_view name) {
+    for (std::string_view left_out : {"angle", "ax", "ay", "alpha", "inv_inertia"})
+      if (name == left_out) return false;
+    return true;
+  }
+  template <class Self, class F>
+  static void for_each_deposit(Self& p, F&& f) {
+    for_each_stored(p, [&](const char* name, auto& v) {
+      if (in_deposit(name)) f(name, v);
+    });
   }
   template <class Self, class F>
   static void for_each_array(Self& p, F&& f) {

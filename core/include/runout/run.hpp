@@ -91,8 +91,37 @@ struct RunState {
   // largest overlap, the time series) still cover the whole run.
   bool rest_frozen = false;
   double t_star_rest = 0;
-  Particles rest_particles;  // only x, y, vx, vy, omega, radius, mass, species, id are filled
+  Particles rest_particles;  // only the arrays of Particles::for_each_deposit are filled
   TimeseriesRow rest_sample;
+
+  // The one list of what a checkpoint keeps of a run, in the codec's order (the deposit at
+  // rest follows, when frozen): f(name, member, bookkeeping). Bookkeeping values are the
+  // run's own and never NaN; the others are measurements, which may be undefined.
+  template <class Self, class F>
+  static void for_each_stored(Self& s, F&& f) {
+    f("ledger", s.ledger, true);
+    f("ep0", s.ep0, true); f("energy_reference_y", s.energy_reference_y, true);
+    f("com_release.x", s.com_release.x(), true); f("com_release.y", s.com_release.y(), true);
+    f("top_release.top_x", s.top_release.top_x, true); f("top_release.top_y", s.top_release.top_y, true);
+    f("below_since", s.below_since, true); f("peak_ek", s.peak_ek, true);
+    f("t_star_peak_ek", s.t_star_peak_ek, true); f("next_sample", s.next_sample, true);
+    f("wall_seconds", s.wall_seconds, true);
+    f("energy_total0", s.energy_total0, true); f("committed0", s.committed0, true);
+    f("dissipated_normal0", s.dissipated_normal0, true);
+    f("dissipated_friction0", s.dissipated_friction0, true);
+    f("dissipated_rolling0", s.dissipated_rolling0, true);
+    f("worst_residual", s.worst_residual, false);
+    f("max_overlap", s.max_overlap, false);
+    f("series", s.series, false);
+    f("series_ends_with_end_row", s.series_ends_with_end_row, true);
+    f("rest_frozen", s.rest_frozen, true);
+  }
+  // Kept only when rest_frozen.
+  template <class Self, class F>
+  static void for_each_stored_at_rest(Self& s, F&& f) {
+    f("t_star_rest", s.t_star_rest, true);
+    f("rest_sample", s.rest_sample, false);
+  }
 };
 std::string encode_run_state(const RunState& s);
 RunState decode_run_state(const std::string& bytes, const std::string& name);
