@@ -43,7 +43,7 @@ const PictureApi& load_module() {
     auto entry = reinterpret_cast<decltype(&runout_picture_api)>(dlsym(handle, kPictureApiSymbol));
     const PictureApi* api = entry ? entry() : nullptr;
     if (!api || api->version != expected.version || std::strcmp(api->build_stamp, expected.build_stamp) != 0 ||
-        api->world_size != expected.world_size || api->run_size != expected.run_size ||
+        api->world_size != expected.world_size || api->run_state_size != expected.run_state_size ||
         api->picture_options_size != expected.picture_options_size) {
       dlclose(handle);
       throw std::runtime_error("the picture module " + path +
@@ -69,10 +69,9 @@ const PictureApi& pictures() {
 
 int render_command(const RenderOptions& o) { return pictures().render(o); }
 int compare_command(const CompareOptions& o) { return pictures().compare(o); }
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
-                                                const SceneDef& scene, const SceneSetup& setup,
-                                                const std::string& out_dir) {
-  return pictures().attach(o, run, world, scene, setup, out_dir);
+std::unique_ptr<PictureSession> open_pictures(const PictureOptions& o, const World& world, const SceneDef& scene,
+                                              const SceneSetup& setup, const std::string& out_dir) {
+  return pictures().open(o, world, scene, setup, out_dir);
 }
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between) {

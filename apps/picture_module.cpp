@@ -56,8 +56,8 @@ render::FrameOptions frame_options(const PictureOptions& o) {
 
 class Session : public PictureSession {
  public:
-  Session(const PictureOptions& o, AvalancheRun& run, const World& world, const SceneDef& scene,
-          const SceneSetup& setup, const std::string& out_dir) {
+  Session(const PictureOptions& o, const World& world, const SceneDef& scene, const SceneSetup& setup,
+          const std::string& out_dir) {
     const render::FrameOptions frame = frame_options(o);
     if (!o.movie.empty() || !o.frames_dir.empty()) {
       render::VideoOptions video;
@@ -66,17 +66,19 @@ class Session : public PictureSession {
       video.preset = o.preset;
       video.lossless = o.lossless;
       movie_.emplace(frame, scene, setup, world, o.movie, video, o.frames_dir);
-      run.add_observer(*movie_, {o.frame_every, 0.0, {}});
+      observers_.push_back({&*movie_, {o.frame_every, 0.0, {}}});
       movie_path_ = o.movie;
     }
     if (!o.snapshots.empty()) {
       const auto times = parse_times(o.snapshots);
       snapshots_.emplace(frame, scene, setup, world, o.snapshot_dir.empty() ? out_dir : o.snapshot_dir, times,
                          render::parse_picture_format(o.snapshot_format.empty() ? "png" : o.snapshot_format));
-      run.add_observer(*snapshots_, {0.0, 0.0, times});
-      run.set_min_end_time(times.back());  // the run goes on to the last snapshot
+      observers_.push_back({&*snapshots_, {0.0, 0.0, times}});
+      last_time_ = times.back();
     }
   }
+  std::vector<std::pair<Observer*, Schedule>> observers() override { return observers_; }
+  double last_time() const override { return last_time_; }
   void finish() override {
     if (movie_) movie_->finish();
   }
@@ -94,14 +96,15 @@ class Session : public PictureSession {
   std::optional<render::MovieRecorder> movie_;
   std::optional<render::SnapshotWriter> snapshots_;
   std::string movie_path_;
+  std::vector<std::pair<Observer*, Schedule>> observers_;
+  double last_time_ = 0;
 };
 
 // The module's bodies of the commands pictures.hpp declares, under their own names (the binary's definitions in
 // picture_loader.cpp forward to these through PictureApi).
-std::unique_ptr<PictureSession> module_attach(const PictureOptions& o, AvalancheRun& run, const World& world,
-                                              const SceneDef& scene, const SceneSetup& setup,
-                                              const std::string& out_dir) {
-  return std::make_unique<Session>(o, run, world, scene, setup, out_dir);
+std::unique_ptr<PictureSession> module_open(const PictureOptions& o, const World& world, const SceneDef& scene,
+                                            const SceneSetup& setup, const std::string& out_dir) {
+  return std::make_unique<Session>(o, world, scene, setup, out_dir);
 }
 
 // --snapshot-format if given, else the -o name's extension (.pdf, .svg), else PNG. A format
@@ -256,7 +259,7 @@ extern "C" __attribute__((visibility("default"))) const runout::app::PictureApi*
     PictureApi a = expected_picture_api_layout(RUNOUT_BUILD_STAMP);
     a.render = &module_render;
     a.compare = &module_compare;
-    a.attach = &module_attach;
+    a.open = &module_open;
     a.bench = &module_bench;
     return a;
   }();

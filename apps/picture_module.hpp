@@ -16,10 +16,10 @@ inline constexpr int kPictureApiVersion = 1;
 struct PictureApi {
   int version = kPictureApiVersion;
   const char* build_stamp = nullptr;
-  std::size_t world_size = 0, run_size = 0, picture_options_size = 0;
+  std::size_t world_size = 0, run_state_size = 0, picture_options_size = 0;
   decltype(&render_command) render = nullptr;
   decltype(&compare_command) compare = nullptr;
-  decltype(&attach_pictures) attach = nullptr;
+  decltype(&open_pictures) open = nullptr;
   decltype(&bench_frames) bench = nullptr;
 };
 
@@ -27,7 +27,7 @@ inline PictureApi expected_picture_api_layout(const char* build_stamp) {
   PictureApi api;
   api.build_stamp = build_stamp;
   api.world_size = sizeof(World);
-  api.run_size = sizeof(AvalancheRun);
+  api.run_state_size = sizeof(RunState);
   api.picture_options_size = sizeof(PictureOptions);
   return api;
 }

@@ -7,9 +7,12 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "runout/run.hpp"
+#include "runout/observer.hpp"
+#include "runout/scene.hpp"
+#include "runout/setup.hpp"
 
 namespace CLI { class App; }
 
@@ -67,18 +70,20 @@ struct CompareOptions {
 int render_command(const RenderOptions& o);
 int compare_command(const CompareOptions& o);
 
-// The movie and snapshot observers of one run.
+// The movie and snapshot observers of one run; the run command attaches them.
 class PictureSession {
  public:
   virtual ~PictureSession() = default;
+  // Each observer with when it fires; they live as long as the session.
+  virtual std::vector<std::pair<Observer*, Schedule>> observers() = 0;
+  virtual double last_time() const = 0;   // t* of the last snapshot (0: none): the run goes on to it
   virtual void finish() = 0;              // completes the video
   virtual std::string report() const = 0; // what was written, for stderr
 };
 // Throws (std::exception) on bad options or when the renderer cannot start. `world` is the
 // state the run starts from: the whole camera is decided on it, and a frame height of 0 sized.
-std::unique_ptr<PictureSession> attach_pictures(const PictureOptions& o, AvalancheRun& run, const World& world,
-                                                const SceneDef& scene, const SceneSetup& setup,
-                                                const std::string& out_dir);
+std::unique_ptr<PictureSession> open_pictures(const PictureOptions& o, const World& world, const SceneDef& scene,
+                                              const SceneSetup& setup, const std::string& out_dir);
 // `runout bench --frames N`: times drawing (+ read-back), PNG encoding and video encoding of
 // N frames of `world`, advancing it `steps_between` steps between frames; prints ms per frame.
 int bench_frames(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,

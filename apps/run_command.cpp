@@ -35,24 +35,22 @@ using Clock = std::chrono::steady_clock;
 // Writes OUT/checkpoint.bin at its schedule, keeping the one before (run_folder.hpp).
 class CheckpointWriter : public Observer {
  public:
-  CheckpointWriter(const RunFolder& folder, std::uint64_t key, const AvalancheRun*& run)
-      : folder_(folder), key_(key), run_(run) {}
-  void observe(const World& world, double t_star) override {
+  CheckpointWriter(const RunFolder& folder, std::uint64_t key) : folder_(folder), key_(key) {}
+  void observe(const World& world, const RunState& state, double t_star) override {
     if (t_star <= 0) return;
-    write_checkpoint(folder_, encode_checkpoint(world, key_, encode_run_state(run_->state())));
+    write_checkpoint(folder_, encode_checkpoint(world, key_, encode_run_state(state)));
   }
 
  private:
   const RunFolder& folder_;
   std::uint64_t key_;
-  const AvalancheRun*& run_;
 };
 
 // LAMMPS dump frames, one file each: dump/frame.<step>.lammpstrj (OVITO reads the sequence).
 class DumpWriter : public Observer {
  public:
   explicit DumpWriter(std::string dir) : dir_(std::move(dir)) { io::make_directories(dir_); }
-  void observe(const World& world, double t_star) override {
+  void observe(const World& world, const RunState&, double t_star) override {
     char name[64];
     std::snprintf(name, sizeof name, "/frame.%09lld.lammpstrj", static_cast<long long>(world.step_count()));
     io::write_file_atomically(dir_ + name, io::lammps_dump_frame(world, t_star));
@@ -87,7 +85,7 @@ class VtkWriter : public Observer {
       }
     }
   }
-  void observe(const World& world, double t_star) override {
+  void observe(const World& world, const RunState&, double t_star) override {
     // Basal-layer membership as the measurements and the pictures have it (measure.hpp).
     const std::vector<char> layer =
         basal_layer(world.particles(), world.segments(), setup_.roles, setup_.large_diameter, packing_).member;
@@ -111,14 +109,15 @@ class VtkWriter : public Observer {
 // states/state_t0020.00.bin, for `runout render` and the study's frames (`runout plot`).
 class StateWriter : public Observer {
  public:
-  StateWriter(std::string dir, std::uint64_t key, const AvalancheRun*& run)
-      : dir_(std::move(dir)), key_(key), run_(run) { io::make_directories(dir_); }
-  void observe(const World& world, double t_star) override {
+  StateWriter(std::string dir, std::uint64_t key) : dir_(std::move(dir)), key_(key) {
+    io::make_directories(dir_);
+  }
+  void observe(const World& world, const RunState& run_state, double t_star) override {
     char name[64];
     std::snprintf(name, sizeof name, "/state_t%07.2f.bin", t_star);
     // The flow at t*, not the process: without the wall time of earlier segments, the state of
     // a resumed run is the uninterrupted run's, byte for byte.
-    RunState state = run_->state();
+    RunState state = run_state;
     state.wall_seconds = 0;
     io::write_file_atomically(dir_ + name, encode_checkpoint(world, key_, encode_run_state(state)));
   }
@@ -126,7 +125,6 @@ class StateWriter : public Observer {
  private:
   std::string dir_;
   std::uint64_t key_;
-  const AvalancheRun*& run_;
 };
 
 // Default: every core for a thesis-sized pile; one thread below about 2,000 discs, where the
@@ -256,8 +254,7 @@ int run_command(const RunOptions& o) {
 
   AvalancheRun run = resumed ? AvalancheRun(world, scene, setup, *resumed)
                              : AvalancheRun(world, scene, setup);
-  const AvalancheRun* run_ptr = &run;
-  CheckpointWriter checkpoints(folder, key, run_ptr);
+  CheckpointWriter checkpoints(folder, key);
   if (scene.output.checkpoint_every > 0)
     run.add_observer(checkpoints, {scene.output.checkpoint_every, scene.output.checkpoint_every, {}});
   std::optional<DumpWriter> dumps;
@@ -272,13 +269,15 @@ int run_command(const RunOptions& o) {
   }
   std::optional<StateWriter> states;
   if (!state_times.empty()) {
-    states.emplace(folder.staging + "/states", key, run_ptr);
+    states.emplace(folder.staging + "/states", key);
     run.add_observer(*states, {0.0, 0.0, state_times});
   }
   std::unique_ptr<PictureSession> pictures;
   if (o.pictures.wants_pictures()) {
     if (o.pictures.snapshot_dir.empty() && !o.pictures.snapshots.empty()) io::make_directories(folder.staging);
-    pictures = attach_pictures(o.pictures, run, world, scene, setup, folder.staging);
+    pictures = open_pictures(o.pictures, world, scene, setup, folder.staging);
+    for (const auto& [observer, schedule] : pictures->observers()) run.add_observer(*observer, schedule);
+    run.set_min_end_time(pictures->last_time());  // the run goes on to the last snapshot
   }
   if (!o.quiet) {
     std::fprintf(stderr, "runout: %zu discs, dt = %.3e s (%.0f steps per t*), %d thread%s\n",

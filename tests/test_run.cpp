@@ -123,7 +123,7 @@ TEST(Run, LedgerCannotStartAtAResume) {
 
 class Recorder : public Observer {
  public:
-  void observe(const World&, double t_star) override { times.push_back(t_star); }
+  void observe(const World&, const RunState&, double t_star) override { times.push_back(t_star); }
   std::vector<double> times;
 };
 
@@ -154,7 +154,7 @@ TEST(Run, ObserversFireOnTheNearestStep) {
 class CheckpointTaker : public Observer {
  public:
   explicit CheckpointTaker(const AvalancheRun*& run) : run_(run) {}
-  void observe(const World& world, double t_star) override {
+  void observe(const World& world, const RunState&, double t_star) override {
     if (t_star > 0 && taken.size() < 3)
       taken.push_back(encode_checkpoint(world, 1, encode_run_state(run_->state())));
   }

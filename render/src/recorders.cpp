@@ -42,7 +42,7 @@ void MovieRecorder::draw(const FramePlan& plan) {
   ++drawn_;
 }
 
-void MovieRecorder::observe(const World& world, double t_star) {
+void MovieRecorder::observe(const World& world, const RunState&, double t_star) {
   worker_->push(maker_.plan(world, t_star));
   ++frames_;
 }
@@ -71,7 +71,7 @@ SnapshotWriter::SnapshotWriter(const FrameOptions& frame, const SceneDef& scene,
   io::make_directories(dir_);
 }
 
-void SnapshotWriter::observe(const World& world, double t_star) {
+void SnapshotWriter::observe(const World& world, const RunState&, double t_star) {
   // The requested time this frame stands for: the nearest one.
   double requested = t_star, best = std::numeric_limits<double>::infinity();
   for (double t : times_)

@@ -1,9 +1,11 @@
 // What sees a run as it goes (frame sinks, dumps, checkpoints) and when: the one piece of the
 // run (run.hpp) that the renderer's recorders need, so they do not include the whole run.
+// An observer is handed the World and the run's state; it never reaches back into the run.
 #pragma once
 
 #include <vector>
 
+#include "runout/run_state.hpp"
 #include "runout/world.hpp"
 
 namespace runout {
@@ -12,7 +14,7 @@ namespace runout {
 class Observer {
  public:
   virtual ~Observer() = default;
-  virtual void observe(const World& world, double t_star) = 0;
+  virtual void observe(const World& world, const RunState& state, double t_star) = 0;
 };
 
 // When an observer fires: every `every` t* from `first`, and/or at listed times. It fires on the

@@ -25,7 +25,7 @@ class MovieRecorder : public Observer {
                 const std::string& video_path, const VideoOptions& video, const std::string& png_dir);
   const FrameOptions& frame() const { return maker_.options(); }  // with the height resolved
   ~MovieRecorder() override;
-  void observe(const World& world, double t_star) override;
+  void observe(const World& world, const RunState&, double t_star) override;
   void finish();  // draws what is queued and completes the video file; rethrows worker errors
   long frames() const { return frames_; }
 
@@ -46,7 +46,7 @@ class SnapshotWriter : public Observer {
  public:
   SnapshotWriter(const FrameOptions& frame, const SceneDef& scene, const SceneSetup& setup, const World& first,
                  std::string dir, std::vector<double> times, PictureFormat format = PictureFormat::png);
-  void observe(const World& world, double t_star) override;
+  void observe(const World& world, const RunState&, double t_star) override;
   std::vector<std::string> written() const { return written_; }
 
  private:
