@@ -58,14 +58,13 @@ std::string default_cache_dir() {
 PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int threads,
                       const std::string& cache_dir, bool use_cache, bool quiet) {
   const auto t0 = Clock::now();
-  World world = build_explicit_world(scene, setup, threads);
-  if (!scene.avalanche) return {std::move(world), false, 0.0, std::nullopt};
+  if (!scene.avalanche) return {build_explicit_world(scene, setup, threads), false, 0.0, std::nullopt};
 
   const std::uint64_t key = pile_key(scene);
   const std::string path = cache_dir + "/pile-" + hex(key) + ".ckpt";
   if (use_cache && io::file_exists(path)) {
     try {
-      decode_checkpoint(io::read_file(path), key, world, path);
+      World world = restore_world(read_checkpoint(io::read_file(path), key, path), scene, setup, threads, path);
       if (!quiet) std::fprintf(stderr, "runout: settled pile from cache %s\n", path.c_str());
       std::optional<SettleReport> settle;
       if (io::file_exists(path + ".json")) settle = io::read_settle_report(io::read_file(path + ".json"));
@@ -82,7 +81,7 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
     if (!quiet) std::fprintf(stderr, "  settling t* = %7.2f  E_k/E_p = %.3e\n", t_star, ratio);
   };
   SettleReport settle;
-  world = build_settled_pile(scene, setup, threads, progress, &settle);
+  World world = build_settled_pile(scene, setup, threads, progress, &settle);
   if (!quiet)
     std::fprintf(stderr,
                  "runout: pile settled at t* = %.2f (grown at %.2f); E_k/E_p = %.2e after %g t* "

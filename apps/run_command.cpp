@@ -220,24 +220,30 @@ int run_command(const RunOptions& o) {
   // What the folder holds decides what this run may do to it; nothing is touched yet.
   const RunFolder folder(o.out_dir);
   const std::uint64_t key = io::physics_key(scene);
-  PreparedWorld prepared{build_explicit_world(scene, setup, threads), false, 0.0, std::nullopt};
+  // The run's one World: restored from the checkpoint it resumes from, or prepared afresh.
+  std::optional<World> resumed_world;
   std::optional<RunState> resumed;
   const FolderPlan plan = plan_folder(folder, key, o.resume, o.overwrite,
                                       [&](const std::string& bytes, const std::string& path) {
-                                        World trial = prepared.world;
-                                        resumed = decode_run_state(decode_checkpoint(bytes, key, trial, path), path);
-                                        prepared.world = std::move(trial);
+                                        Checkpoint c = read_checkpoint(bytes, key, path);
+                                        RunState state = decode_run_state(c.run_state, path);
+                                        resumed_world.emplace(restore_world(std::move(c), scene, setup, threads, path));
+                                        resumed = std::move(state);
                                       });
   for (const auto& note : plan.notes) std::fprintf(stderr, "runout: %s\n", note.c_str());
+  std::optional<PreparedWorld> prepared_world;
   if (plan.resume) {
+    prepared_world.emplace(PreparedWorld{std::move(*resumed_world), false, 0.0, std::nullopt});
     if (!o.quiet)
       std::fprintf(stderr, "runout: resuming from %s at t* = %.3f\n", plan.resume->path.c_str(),
-                   prepared.world.time() / setup.unit_time);
+                   prepared_world->world.time() / setup.unit_time);
   } else {
     resumed.reset();
-    prepared = prepare(scene, setup, threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
-                       !o.no_cache, o.quiet);
+    resumed_world.reset();
+    prepared_world.emplace(prepare(scene, setup, threads, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
+                                   !o.no_cache, o.quiet));
   }
+  PreparedWorld& prepared = *prepared_world;
   World& world = prepared.world;
 
   // From here on the folder is this run's: an earlier run's own files go (summary.json first),

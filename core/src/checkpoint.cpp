@@ -19,7 +19,7 @@ std::uint64_t checksum(std::string_view bytes) {
 
 // Every value a World relies on, checked before it is built: a checksum only says the bytes
 // are the ones written, not that they were sane (a NaN coordinate would reach the cell grid).
-void check_state(const Particles& p, int species_count, const std::string& name) {
+void check_state(const Particles& p, const std::string& name) {
   auto bad = [&](const std::string& what, std::size_t k) {
     throw IoError(name + ": checkpoint is corrupt (" + what + " of disc " + std::to_string(k) + ")");
   };
@@ -30,7 +30,7 @@ void check_state(const Particles& p, int species_count, const std::string& name)
     if (!(p.radius[k] > 0) || !std::isfinite(p.radius[k])) bad("radius", k);
     if (!(p.mass[k] > 0) || !std::isfinite(p.mass[k]) || !std::isfinite(1.0 / p.mass[k])) bad("mass", k);
     if (!(p.inv_inertia[k] > 0) || !std::isfinite(p.inv_inertia[k])) bad("moment of inertia", k);
-    if (p.species[k] < 0 || p.species[k] >= species_count) bad("species", k);
+    if (p.species[k] < 0) bad("species", k);
   }
 }
 
@@ -104,8 +104,7 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   return seal_checkpoint(w.bytes());
 }
 
-std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
-                              const std::string& name) {
+Checkpoint read_checkpoint(std::string_view bytes, std::uint64_t scene_key, const std::string& name) {
   if (bytes.size() < sizeof(kMagic) + 4 + 8 + 8 ||
       std::string_view(bytes.data(), sizeof(kMagic)) != std::string_view(kMagic, sizeof(kMagic)))
     throw IoError(name + ": not a runout checkpoint");
@@ -126,16 +125,16 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   ByteReader r(payload, name);
   if (r.get<std::uint64_t>() != scene_key)
     throw IoError(name + ": checkpoint was written for a different scene");
-  const double time = r.get<double>();
-  const auto steps = r.get<std::int64_t>();
-  Dissipation lost;
-  lost.normal = r.get<double>();
-  lost.friction = r.get<double>();
-  lost.rolling = r.get<double>();
-  if (!std::isfinite(time) || time < 0 || steps < 0 || !std::isfinite(lost.normal) ||
-      !std::isfinite(lost.friction) || !std::isfinite(lost.rolling))
+  Checkpoint c;
+  c.time = r.get<double>();
+  c.steps = r.get<std::int64_t>();
+  c.dissipation.normal = r.get<double>();
+  c.dissipation.friction = r.get<double>();
+  c.dissipation.rolling = r.get<double>();
+  if (!std::isfinite(c.time) || c.time < 0 || c.steps < 0 || !std::isfinite(c.dissipation.normal) ||
+      !std::isfinite(c.dissipation.friction) || !std::isfinite(c.dissipation.rolling))
     throw IoError(name + ": checkpoint is corrupt (clock or energy ledger)");
-  Particles p;
+  Particles& p = c.discs;
   Particles::for_each_stored(p, [&](const char*, auto& v) {
     v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
   });
@@ -143,44 +142,55 @@ std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, W
   Particles::for_each_stored(p, [&](const char* field, const auto& v) {
     if (v.size() != n) throw IoError(name + ": checkpoint is corrupt (" + field + " has another length than x)");
   });
-  check_state(p, world.table().species_count, name);
+  check_state(p, name);
   p.inv_mass.resize(n);
   for (std::size_t k = 0; k < n; ++k) p.inv_mass[k] = 1.0 / p.mass[k];
 
-  const auto active = r.get_vector<std::uint8_t>();
-  if (active.size() != world.segments().size())
-    throw IoError(name + ": checkpoint has a different number of walls than the scene");
-
-  PairContacts pairs;
-  pairs.row_start = r.get_vector<std::int32_t>();
-  pairs.j = r.get_vector<std::int32_t>();
-  pairs.history_width = r.get<std::int32_t>();
-  pairs.history = r.get_vector<double>();
-  WallContacts walls;
-  walls.row_start = r.get_vector<std::int32_t>();
-  walls.segment = r.get_vector<std::int32_t>();
-  walls.history_width = r.get<std::int32_t>();
-  walls.history = r.get_vector<double>();
-  std::string run_state = r.get_string();
+  c.active_segments = r.get_vector<std::uint8_t>();
+  for (auto* contacts : {&c.pairs.row_start, &c.pairs.j}) *contacts = r.get_vector<std::int32_t>();
+  c.pairs.history_width = r.get<std::int32_t>();
+  c.pairs.history = r.get_vector<double>();
+  for (auto* contacts : {&c.walls.row_start, &c.walls.segment}) *contacts = r.get_vector<std::int32_t>();
+  c.walls.history_width = r.get<std::int32_t>();
+  c.walls.history = r.get_vector<double>();
+  c.run_state = r.get_string();
   if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
+  check_rows(c.pairs.row_start, c.pairs.j, c.pairs, n, static_cast<std::int64_t>(n), true, name);
+  return c;
+}
+
+World restore_world(Checkpoint c, std::vector<Segment> segments, ContactTable table, StepSettings settings,
+                    const std::string& name) {
+  // What the scene decides: the species, the walls and the contact laws' history.
+  const std::size_t n = c.discs.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (c.discs.species[k] >= table.species_count)
+      throw IoError(name + ": checkpoint is corrupt (species of disc " + std::to_string(k) + ")");
+  if (c.active_segments.size() != segments.size())
+    throw IoError(name + ": checkpoint has a different number of walls than the scene");
+  check_rows(c.walls.row_start, c.walls.segment, c.walls, n, static_cast<std::int64_t>(segments.size()), false,
+             name);
+  World world(std::move(c.discs), std::move(segments), std::move(table), std::move(settings));
   // Lists written before the first step are empty; written ones carry the contact model's
   // history, which must be this world's (the scene key covers the laws; this is the proof).
-  for (int width : {pairs.history_width, walls.history_width})
+  for (int width : {c.pairs.history_width, c.walls.history_width})
     if (width != 0 && width != world.history_width())
       throw IoError(name + ": checkpoint was written with other contact laws (" +
                     std::to_string(width) + " history values per contact, this scene keeps " +
                     std::to_string(world.history_width()) + ")");
-  check_rows(pairs.row_start, pairs.j, pairs, n, static_cast<std::int64_t>(n), true, name);
-  check_rows(walls.row_start, walls.segment, walls, n,
-             static_cast<std::int64_t>(world.segments().size()), false, name);
+  for (std::size_t s = 0; s < c.active_segments.size(); ++s)
+    if (!c.active_segments[s]) world.deactivate_wall_segment(s);
+  world.set_clock(c.time, c.steps);
+  world.set_dissipation(c.dissipation);
+  world.restore_history(c.pairs, c.walls);
+  return world;
+}
 
-  World restored(std::move(p), world.segments(), world.table(), world.settings());
-  for (std::size_t s = 0; s < active.size(); ++s)
-    if (!active[s]) restored.deactivate_wall_segment(s);
-  restored.set_clock(time, steps);
-  restored.set_dissipation(lost);
-  restored.restore_history(pairs, walls);
-  world = std::move(restored);
+std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
+                              const std::string& name) {
+  Checkpoint c = read_checkpoint(bytes, scene_key, name);
+  std::string run_state = std::move(c.run_state);
+  world = restore_world(std::move(c), world.segments(), world.table(), world.settings(), name);
   return run_state;
 }
 

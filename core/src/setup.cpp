@@ -235,6 +235,12 @@ World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int t
                step_settings(scene, setup, threads));
 }
 
+World restore_world(Checkpoint checkpoint, const SceneDef& scene, const SceneSetup& setup, int threads,
+                    const std::string& name) {
+  return restore_world(std::move(checkpoint), make_segments(setup.walls), setup.table,
+                       step_settings(scene, setup, threads), name);
+}
+
 World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int threads,
                          const std::function<void(double, double)>& progress,
                          SettleReport* report) {

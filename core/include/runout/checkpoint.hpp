@@ -23,8 +23,29 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
 // tests and fuzz targets use it to build well-sealed files with chosen contents.
 std::string seal_checkpoint(std::string_view payload);
 
-// Restores `world` (built from the same scene) and returns the run-state blob. Throws IoError
-// for a corrupt, truncated, foreign or other-version file and for a scene-key mismatch.
+// A checkpoint's contents, read and checked on their own: the format, the checksum, the scene
+// key, finite and consistent values. What depends on the scene is checked by restore_world.
+struct Checkpoint {
+  double time = 0;
+  std::int64_t steps = 0;
+  Dissipation dissipation;
+  Particles discs;
+  std::vector<std::uint8_t> active_segments;  // per wall segment of the scene
+  PairContacts pairs;                          // rows, partners and history only
+  WallContacts walls;
+  std::string run_state;                       // the caller's blob
+};
+// Throws IoError for a corrupt, truncated, foreign or other-version file and for a scene-key
+// mismatch (`name` says which file).
+Checkpoint read_checkpoint(std::string_view bytes, std::uint64_t scene_key, const std::string& name);
+
+// The World of a checkpoint, made once from its scene's walls, coefficients and settings.
+// Throws IoError where the checkpoint does not fit them (species, walls, contact laws).
+World restore_world(Checkpoint checkpoint, std::vector<Segment> segments, ContactTable table,
+                    StepSettings settings, const std::string& name);
+
+// Both at once into `world`, a World of the same scene (the renderer, tests); returns the
+// run-state blob.
 std::string decode_checkpoint(std::string_view bytes, std::uint64_t scene_key, World& world,
                               const std::string& name);
 

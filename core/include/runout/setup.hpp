@@ -7,6 +7,7 @@
 
 #include "runout/measure.hpp"
 #include "runout/scene.hpp"
+#include "runout/checkpoint.hpp"
 #include "runout/world.hpp"
 
 namespace runout {
@@ -39,6 +40,9 @@ double disc_count(const SpeciesDef& species, int reference_large_count, double l
 
 // A world holding the scene's explicit particles and walls.
 World build_explicit_world(const SceneDef& scene, const SceneSetup& setup, int threads);
+// The World a checkpoint of this scene holds (a cached pile, a run to resume), made once.
+World restore_world(Checkpoint checkpoint, const SceneDef& scene, const SceneSetup& setup, int threads,
+                    const std::string& name);
 
 // The thesis pile (SPEC §5, fig. 3.1): centres at random in the box behind the gate, radii near
 // zero and random velocities; then radii grow exponentially to their final values and the pile
