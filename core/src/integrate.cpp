@@ -34,6 +34,10 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
                    const double* __restrict inv_mass, const double* __restrict inv_inertia,
                    double* __restrict ax, double* __restrict ay, double* __restrict alpha) {
   constexpr std::int64_t L = DiscRuns::kSlice;
+  // An empty block starts at n, which need not start a slice: its first slice would be the
+  // last slice of the block before, summed here a second time by another thread (a race on
+  // that slice's accelerations, seen with fewer discs than threads have windows).
+  if (lo >= hi) return;
   const double* __restrict fx = c.fx.data();
   const double* __restrict fy = c.fy.data();
   const double* __restrict torque = c.torque.data();
