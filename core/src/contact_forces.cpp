@@ -226,7 +226,7 @@ double seconds_since(Clock::time_point t0) {
 
 template <class Model, bool kLedger>
 PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
-                     WallContacts& walls, const DiscRuns& runs, std::vector<PassSums>& blocks,
+                     WallContacts& walls, std::vector<PassSums>& blocks,
                      StepProfile& profile) {
   const StepSettings& st = step.settings;
   auto t0 = Clock::now();
@@ -236,11 +236,10 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque.data()};
-  const auto n = static_cast<std::int64_t>(p.size());
-  // The pairs whose i is in thread t's block of discs (disc_block_start).
-  auto pair_split = [&](int t, int T) {
-    return static_cast<std::int64_t>(pairs.row_start[disc_block_start(runs, n, t, T)]);
-  };
+  // Equal shares of the pairs: each costs the same. Splitting at the first pair of each
+  // thread's block of discs (disc_block_start, balanced for the sums) gave thread 0 4 % more
+  // pairs on the thesis pile and 8 % more time (docs/performance.md, issue 11).
+  auto pair_split = [&](int t, int T) { return static_cast<std::int64_t>(pairs.size()) * t / T; };
   const auto wall_law = Model::tables(step.table.wall);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, walls.history.data(),
@@ -272,14 +271,13 @@ void energy_of(const Source& source, const typename Model::Tables& tables,
 }  // namespace
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, const DiscRuns& runs,
-                        std::vector<PassSums>& ledger_blocks, StepProfile& profile) {
+                        WallContacts& walls, std::vector<PassSums>& ledger_blocks, StepProfile& profile) {
   PassSums sums;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
     sums = step.settings.track_energy
-               ? forces_with<Model, true>(step, p, pairs, walls, runs, ledger_blocks, profile)
-               : forces_with<Model, false>(step, p, pairs, walls, runs, ledger_blocks, profile);
+               ? forces_with<Model, true>(step, p, pairs, walls, ledger_blocks, profile)
+               : forces_with<Model, false>(step, p, pairs, walls, ledger_blocks, profile);
   });
   return sums;
 }

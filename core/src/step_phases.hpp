@@ -16,16 +16,14 @@ struct StepContext {
   const std::vector<Segment>& segments;
 };
 
-// The first disc of thread t's block of T, for the force sums and the update (integrate.cpp)
-// and, through its first pair, for the pair forces: each thread then computes the pushes its
-// own discs sum, and reads positions it wrote itself.
+// The first disc of thread t's block of T, for the force sums and the update (integrate.cpp):
+// blocks of equal work (a disc's run slots plus one), starting at whole windows of lanes.
 std::int64_t disc_block_start(const DiscRuns& runs, std::int64_t n, int t, int T);
 
 // Contact forces of every listed pair and disc–wall contact (contact_forces.cpp): writes the
 // per-contact forces and torques and updates the history. `ledger_blocks` is scratch.
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, const DiscRuns& runs,
-                        std::vector<PassSums>& ledger_blocks, StepProfile& profile);
+                        WallContacts& walls, std::vector<PassSums>& ledger_blocks, StepProfile& profile);
 
 // Spring energies and committed losses of the touching contacts now (contact_forces.cpp).
 struct ContactEnergy {

@@ -156,7 +156,7 @@ void World::rebuild_lists() {
 
 void World::compute_forces() {
   const PassSums sums = phases::contact_forces({settings_, table_, segments_}, particles_, pairs_,
-                                               wall_contacts_, runs_, ledger_blocks_, profile_);
+                                               wall_contacts_, ledger_blocks_, profile_);
   ledger_.normal += sums.loss_normal;
   ledger_.friction += sums.loss_friction;
   ledger_.rolling += sums.loss_rolling;
