@@ -1,5 +1,5 @@
 // `runout keys`: every key of a scene file's flat tables with what it allows, its default and
-// its meaning, from the same list the scene reader and writer use (core/io/src/scene_keys.hpp).
+// its meaning, from the same list the scene reader and writer use (io/src/scene_keys.hpp).
 #include <algorithm>
 #include <cstdio>
 

@@ -1,5 +1,5 @@
 // Plain definition structs for a scene, with units and defaults (SPEC §3, §5). The TOML reader
-// (core/io) fills them at the edge; the core never parses text. Lengths are metres unless a
+// (io/) fills them at the edge; the core never parses text. Lengths are metres unless a
 // name says otherwise; every time a user gives or sees is t* = t sqrt(g/d) (SPEC §4).
 #pragma once
 
