@@ -1,5 +1,12 @@
 // The run loop: the at-rest criterion and observer scheduling.
 #include <gtest/gtest.h>
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
 
 #include <cmath>
 #include <cstring>
@@ -147,21 +154,57 @@ TEST(Run, ObserversFireOnTheNearestStep) {
   EXPECT_NEAR(at.times[1], 2.5, half_step + 1e-12);
 }
 
+// What observers cost the run is reported: an observer that takes 20 ms a call, called 4 times.
+class SlowRecorder : public Observer {
+ public:
+  void observe(const World&, const RunState&, double) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ++calls;
+  }
+  int calls = 0;
+};
+
+TEST(Run, TheTimeSpentInObserversIsReported) {
+  SceneDef s = floor_scene();
+  s.particles = {testing::disc(0.0, 0.3, 0.5)};
+  s.output.end_time = 3.0;
+  const SceneSetup setup = derive_setup(s);
+  World w = build_explicit_world(s, setup, 1);
+  AvalancheRun run(w, s, setup);
+  SlowRecorder slow;
+  run.add_observer(slow, {1.0, 0.0, {}});
+  const RunResult r = run.run();
+  ASSERT_EQ(slow.calls, 4);
+  EXPECT_GE(r.observer_seconds, 0.080);
+  EXPECT_LE(r.observer_seconds, r.wall_seconds);
+}
+
+// A wait for the pictures' helpers runs on every physics thread, each its own OpenMP thread.
+TEST(Run, WaitingRunsOnEveryPhysicsThread) {
+  for (int threads : {1, 2, 3}) {
+    std::mutex m;
+    std::set<int> seen;
+    std::atomic<int> calls{0};
+    wait_on_every_thread(threads, [&] {
+      ++calls;
+      std::lock_guard lock(m);
+      seen.insert(omp_get_thread_num());
+    });
+    EXPECT_EQ(calls.load(), threads);
+    EXPECT_EQ(static_cast<int>(seen.size()), threads);
+  }
+}
+
 // Exact resume (SPEC §5, docs/reliability.md): a run killed right after any checkpoint and
 // resumed gives every summary field, every time-series row and the final state of the run
 // that never stopped. Cadences put checkpoints on sample times (0.5), on rest-test steps (a
 // multiple of the rest test's step cadence) and between both (0.37).
 class CheckpointTaker : public Observer {
  public:
-  explicit CheckpointTaker(const AvalancheRun*& run) : run_(run) {}
-  void observe(const World& world, const RunState&, double t_star) override {
-    if (t_star > 0 && taken.size() < 3)
-      taken.push_back(encode_checkpoint(world, 1, encode_run_state(run_->state())));
+  void observe(const World& world, const RunState& state, double t_star) override {
+    if (t_star > 0 && taken.size() < 3) taken.push_back(encode_checkpoint(world, 1, encode_run_state(state)));
   }
   std::vector<std::string> taken;
-
- private:
-  const AvalancheRun*& run_;
 };
 
 nlohmann::json summary_without_wall_times(const RunResult& r, const SceneSetup& setup) {
@@ -188,8 +231,7 @@ TEST(Run, ResumeFromAnyCheckpointIsTheUninterruptedRun) {
   for (double every : {0.5, rest_test_every, 0.37}) {
     World w = released;
     AvalancheRun straight(w, s, setup);
-    const AvalancheRun* ptr = &straight;
-    CheckpointTaker taker(ptr);
+    CheckpointTaker taker;
     straight.add_observer(taker, {every, every, {}});
     Recorder snapshots;  // an observer at fixed times: none is repeated or lost by a resume
     straight.add_observer(snapshots, {0.0, 0.0, {0.0, 1.0, 2.2, 5.0}});

@@ -130,7 +130,10 @@ void AvalancheRun::fire_observers() {
       due = true;
       ++s.next_at;
     }
-    if (due) s.observer->observe(world_, state_, now);
+    if (!due) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    s.observer->observe(world_, state_, now);
+    observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 }
 
@@ -260,6 +263,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.steps = world_.step_count();
   r.dt = setup_.dt;
   r.wall_seconds = wall_seconds;
+  r.observer_seconds = observer_seconds_;
   r.counts = setup_.counts;
   // Large = the species of the largest nominal diameter; everything else counts as small.
   r.n_large = setup_.counts[setup_.largest_species];
@@ -295,6 +299,12 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.max_overlap = scene_.output.series.overlap ? std::max(state_.max_overlap, r.final_energy.max_overlap) : none;
   r.profile = world_.profile();
   return r;
+}
+
+void wait_on_every_thread(int threads, const std::function<void()>& wait) {
+  if (threads <= 1) return wait();
+#pragma omp parallel num_threads(threads)
+  wait();
 }
 
 }  // namespace runout

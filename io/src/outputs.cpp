@@ -99,7 +99,8 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["profile_seconds"] = {{"contact_forces", r.profile.contact_forces},
                           {"integrate", r.profile.integrate},
                           {"rebuild", r.profile.rebuild},
-                          {"rebuilds", r.profile.rebuilds}};
+                          {"rebuilds", r.profile.rebuilds},
+                          {"observers", r.observer_seconds}};
   return j.dump(2) + "\n";
 }
 

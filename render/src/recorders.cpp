@@ -43,7 +43,10 @@ void MovieRecorder::draw(const FramePlan& plan) {
 }
 
 void MovieRecorder::observe(const World& world, const RunState&, double t_star) {
-  worker_->push(maker_.plan(world, t_star));
+  FramePlan plan = maker_.plan(world, t_star);
+  // The helpers are behind: wait with every physics thread asleep, so they have every core.
+  if (worker_->full()) wait_on_every_thread(world.settings().threads, [this] { worker_->wait_for_room(); });
+  worker_->push(std::move(plan));
   ++frames_;
 }
 

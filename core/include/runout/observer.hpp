@@ -3,6 +3,7 @@
 // An observer is handed the World and the run's state; it never reaches back into the run.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "runout/run_state.hpp"
@@ -25,5 +26,12 @@ struct Schedule {
   double first = 0;
   std::vector<double> at;
 };
+
+// Runs `wait`, a blocking wait (for room in a helper's queue, say), on each of the run's
+// `threads` physics threads at once, so every core is free while the simulation waits. An
+// idle OpenMP team spins on its cores for milliseconds before it sleeps: a helper the
+// simulation waits for would otherwise get one core where the physics leaves two idle
+// (docs/performance.md, issue 12).
+void wait_on_every_thread(int threads, const std::function<void()>& wait);
 
 }  // namespace runout

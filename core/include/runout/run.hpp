@@ -44,6 +44,9 @@ struct RunResult {
   double worst_energy_residual = 0;  // largest |residual| / Ep0 over the run
   double max_overlap = 0;            // largest overlap / smaller radius seen in the samples
   StepProfile profile;
+  // Wall time the simulation thread spent in observers this segment (planning pictures and
+  // waiting for their helpers, writing checkpoints, dumps, VTK frames): what they cost the run.
+  double observer_seconds = 0;
 };
 
 class AvalancheRun {
@@ -93,6 +96,7 @@ class AvalancheRun {
   bool interrupted_ = false;
   bool reached_end_time_ = false;
   double min_end_time_ = 0;
+  double observer_seconds_ = 0;
 };
 
 }  // namespace runout

@@ -48,6 +48,17 @@ class IdleWorker {
     changed_.notify_all();
   }
 
+  // The queue is full: a push would wait.
+  bool full() {
+    std::lock_guard lock(mutex_);
+    return queue_.size() >= capacity_ && !done_;
+  }
+  // Waits until a push would not; any number of threads may wait at once.
+  void wait_for_room() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return queue_.size() < capacity_ || done_; });
+  }
+
   void finish() {
     {
       std::lock_guard lock(mutex_);
