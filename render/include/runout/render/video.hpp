@@ -28,7 +28,7 @@ class VideoWriter {
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
 
-  void write(Image frame);  // queued; rethrows an encoder error from the worker
+  void write(const Image& frame);  // copied and queued; rethrows an encoder error from the worker
   void finish();            // drains, writes the trailer, renames into place
 
  private:
