@@ -134,19 +134,22 @@ class Recorder : public Observer {
   std::vector<double> times;
 };
 
-TEST(Run, ObserversFireOnTheNearestStep) {
+// One disc on the floor to t* = 3 with the given observers; also half a step in t*.
+std::pair<RunResult, double> disc_on_floor(const std::vector<std::pair<Observer*, Schedule>>& observers) {
   SceneDef s = floor_scene();
   s.particles = {testing::disc(0.0, 0.3, 0.5)};
   s.output.end_time = 3.0;
   const SceneSetup setup = derive_setup(s);
   World w = build_explicit_world(s, setup, 1);
   AvalancheRun run(w, s, setup);
+  for (const auto& [observer, schedule] : observers) run.add_observer(*observer, schedule);
+  return {run.run(), 0.5 * setup.dt / setup.unit_time};
+}
+
+TEST(Run, ObserversFireOnTheNearestStep) {
   Recorder every, at;
-  run.add_observer(every, {1.0, 0.0, {}});
-  run.add_observer(at, {0.0, 0.0, {0.25, 2.5}});
-  const RunResult r = run.run();
+  const auto [r, half_step] = disc_on_floor({{&every, {1.0, 0.0, {}}}, {&at, {0.0, 0.0, {0.25, 2.5}}}});
   EXPECT_TRUE(r.reached_end_time);  // even if t* ends up to half a step before 3
-  const double half_step = 0.5 * setup.dt / setup.unit_time;
   ASSERT_EQ(every.times.size(), 4u);  // 0, 1, 2, 3
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(every.times[k], k, half_step + 1e-12);
   ASSERT_EQ(at.times.size(), 2u);
@@ -165,15 +168,8 @@ class SlowRecorder : public Observer {
 };
 
 TEST(Run, TheTimeSpentInObserversIsReported) {
-  SceneDef s = floor_scene();
-  s.particles = {testing::disc(0.0, 0.3, 0.5)};
-  s.output.end_time = 3.0;
-  const SceneSetup setup = derive_setup(s);
-  World w = build_explicit_world(s, setup, 1);
-  AvalancheRun run(w, s, setup);
   SlowRecorder slow;
-  run.add_observer(slow, {1.0, 0.0, {}});
-  const RunResult r = run.run();
+  const RunResult r = disc_on_floor({{&slow, {1.0, 0.0, {}}}}).first;
   ASSERT_EQ(slow.calls, 4);
   EXPECT_GE(r.observer_seconds, 0.080);
   EXPECT_LE(r.observer_seconds, r.wall_seconds);
