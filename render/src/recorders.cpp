@@ -6,16 +6,14 @@
 #include <limits>
 
 #include "runout/io/files.hpp"
-#include "runout/render/idle_worker.hpp"
+#include "runout/render/batch_worker.hpp"
 
 namespace runout::render {
 
 namespace {
 // llvmpipe starts its rasteriser threads (LP_NUM_THREADS, default one per core) with the first
-// OpenGL context, on the thread that makes it: the simulation thread, at normal priority. They
-// then preempted the physics whenever the idle drawing thread handed them a frame. With 0 the
-// drawing thread rasterises itself, under SCHED_IDLE like the rest of the movie's work. Read
-// once per process; a value the user set is kept.
+// OpenGL context. With 0 the drawing thread rasterises itself, beside the video encoder's
+// thread on the other core. Read once per process; a value the user set is kept.
 int draw_on_the_idle_thread() { return ::setenv("LP_NUM_THREADS", "0", /*overwrite=*/0); }
 }  // namespace
 
@@ -25,7 +23,9 @@ MovieRecorder::MovieRecorder(const FrameOptions& frame, const SceneDef& scene, c
     : maker_((draw_on_the_idle_thread(), frame), scene, setup, &first), png_dir_(png_dir), keep_alpha_(frame.transparent) {
   if (!video_path.empty()) video_.emplace(video_path, maker_.options().width, maker_.options().height, video);
   if (!png_dir_.empty()) io::make_directories(png_dir_);
-  worker_ = std::make_unique<IdleWorker<FramePlan>>(4, [this](FramePlan& plan) { draw(plan); });
+  // Nothing is drawn or encoded while the physics steps (observe opens them per batch).
+  if (video_) video_->set_encoding(false);
+  worker_ = std::make_unique<BatchWorker<FramePlan>>(/*open=*/false, [this](FramePlan& plan) { draw(plan); });
 }
 
 MovieRecorder::~MovieRecorder() = default;
@@ -43,14 +43,23 @@ void MovieRecorder::draw(const FramePlan& plan) {
 }
 
 void MovieRecorder::observe(const World& world, const RunState&, double t_star) {
-  FramePlan plan = maker_.plan(world, t_star);
-  // The helpers are behind: wait with every physics thread asleep, so they have every core.
-  if (worker_->full()) wait_on_every_thread(world.settings().threads, [this] { worker_->wait_for_room(); });
-  worker_->push(std::move(plan));
+  worker_->push(maker_.plan(world, t_star));
   ++frames_;
+  if (worker_->queued() < kBatch) return;
+  // A batch is planned: draw and encode it with every physics thread asleep, so the helpers
+  // have every core, then step on with the cores to the physics alone.
+  worker_->set_open(true);
+  if (video_) video_->set_encoding(true);
+  wait_on_every_thread(world.settings().threads, [this] {
+    worker_->wait_drained();
+    if (video_) video_->wait_encoded();
+  });
+  worker_->set_open(false);
+  if (video_) video_->set_encoding(false);
 }
 
 void MovieRecorder::finish() {
+  if (video_) video_->set_encoding(true);  // the last frames: drawn and encoded side by side
   worker_->finish();
   if (video_) video_->finish();
 }

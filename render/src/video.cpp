@@ -12,7 +12,7 @@ extern "C" {
 #include <vector>
 
 #include "runout/render/gl_renderer.hpp"
-#include "runout/render/idle_worker.hpp"
+#include "runout/render/batch_worker.hpp"
 
 namespace runout::render {
 
@@ -43,7 +43,7 @@ struct VideoWriter::Impl {
   std::mutex spare_mutex;
   std::vector<Image> spare;
 
-  std::unique_ptr<IdleWorker<Image>> worker;  // converts and encodes off the simulation thread
+  std::unique_ptr<BatchWorker<Image>> worker;  // converts and encodes off the caller's thread
 
   Image take_spare() {
     std::lock_guard lock(spare_mutex);
@@ -167,8 +167,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
   m.frame->width = width;
   m.frame->height = height;
   if (!m.frame || !m.packet || av_frame_get_buffer(m.frame, 0) < 0) throw RenderError("video: out of memory");
-  m.worker = std::make_unique<IdleWorker<Image>>(
-      static_cast<std::size_t>(options.queue_frames),
+  m.worker = std::make_unique<BatchWorker<Image>>(
+      /*open=*/true,
       [&m](Image& image) {
         m.encode(image);
         m.give_back(std::move(image));
@@ -187,8 +187,11 @@ void VideoWriter::write(const Image& frame) {
   copy.width = frame.width;
   copy.height = frame.height;
   copy.rgba.assign(frame.rgba.begin(), frame.rgba.end());  // into the spare's own bytes
-  impl_->worker->push(std::move(copy));
+  impl_->worker->push(std::move(copy), static_cast<std::size_t>(impl_->options.queue_frames));
 }
+
+void VideoWriter::set_encoding(bool on) { impl_->worker->set_open(on); }
+void VideoWriter::wait_encoded() { impl_->worker->wait_drained(); }
 
 void VideoWriter::finish() { impl_->worker->finish(); }
 

@@ -8,15 +8,16 @@
 #include <vector>
 
 #include "runout/render/frame.hpp"
-#include "runout/render/idle_worker.hpp"
+#include "runout/render/batch_worker.hpp"
 #include "runout/render/video.hpp"
 #include "runout/observer.hpp"
 
 namespace runout::render {
 
-// The simulation thread only plans each frame (camera, colours: a copy of the disc state); a
-// drawing thread renders it and hands it to the PNG writer and the video encoder, so pictures
-// overlap the physics.
+// The simulation thread only plans each frame (camera, colours: a copy of the disc state). A
+// batch of plans is then drawn by a drawing thread, which hands each picture to the PNG writer
+// and the video encoder's thread, while every physics thread waits asleep: the two helpers
+// have the cores to themselves and never preempt a stepping physics thread.
 class MovieRecorder : public Observer {
  public:
   // `video_path` empty: no video; `png_dir` empty: no PNG sequence. `first`: the World the
@@ -31,13 +32,16 @@ class MovieRecorder : public Observer {
 
  private:
   void draw(const FramePlan& plan);
+  // Plans drawn and encoded at a time (at most the video's queue_frames, so drawing a batch
+  // never waits for the encoder's queue).
+  static constexpr std::size_t kBatch = 8;
 
   FrameMaker maker_;
   std::optional<VideoWriter> video_;
   std::string png_dir_;
   bool keep_alpha_ = false;
   long frames_ = 0, drawn_ = 0;
-  std::unique_ptr<IdleWorker<FramePlan>> worker_;  // last: stops before the members it uses
+  std::unique_ptr<BatchWorker<FramePlan>> worker_;  // last: stops before the members it uses
 };
 
 // Writes DIR/snapshot_t<T>.png (or .pdf, .svg) for each requested T (the frame is the step

@@ -16,7 +16,7 @@ struct VideoOptions {
   int crf = 20;                  // x264 constant rate factor, 0..51 (lower = better)
   std::string preset = "ultrafast";
   bool lossless = false;         // yuv444p, qp 0: exact colours, not playable in browsers
-  int queue_frames = 8;          // frames waiting for the encoder before write() blocks
+  int queue_frames = 8;          // frames waiting for the encoder before write() blocks (while encoding)
 };
 
 class VideoWriter {
@@ -29,6 +29,10 @@ class VideoWriter {
   VideoWriter& operator=(const VideoWriter&) = delete;
 
   void write(const Image& frame);  // copied and queued; rethrows an encoder error from the worker
+  // Encoding goes on beside the caller unless held (set_encoding(false)): frames then wait,
+  // unbounded, until it is on again (a movie encodes while the physics waits, recorders.hpp).
+  void set_encoding(bool on);
+  void wait_encoded();      // until every frame written so far is encoded
   void finish();            // drains, writes the trailer, renames into place
 
  private:
