@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <omp.h>
+
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 
@@ -300,6 +302,8 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.profile = world_.profile();
   return r;
 }
+
+int available_cores() { return omp_get_num_procs(); }
 
 void wait_on_every_thread(int threads, const std::function<void()>& wait) {
   if (threads <= 1) return wait();

@@ -43,6 +43,17 @@ void MovieRecorder::draw(const FramePlan& plan) {
 }
 
 void MovieRecorder::observe(const World& world, const RunState&, double t_star) {
+  const int threads = world.settings().threads;
+  if (threads < available_cores()) {
+    // A core the physics leaves free: the helpers work there, beside it, and the simulation
+    // waits (asleep) only when they are a batch behind.
+    worker_->set_open(true);
+    if (video_) video_->set_encoding(true);
+    if (worker_->queued() >= kBatch) wait_on_every_thread(threads, [this] { worker_->wait_for_room(kBatch); });
+    worker_->push(maker_.plan(world, t_star));
+    ++frames_;
+    return;
+  }
   worker_->push(maker_.plan(world, t_star));
   ++frames_;
   if (worker_->queued() < kBatch) return;

@@ -33,5 +33,8 @@ struct Schedule {
 // simulation waits for would otherwise get one core where the physics leaves two idle
 // (docs/performance.md, issue 12).
 void wait_on_every_thread(int threads, const std::function<void()>& wait);
+// The cores this process may run on (its CPU affinity): a run with fewer physics threads
+// leaves its helpers a core of their own.
+int available_cores();
 
 }  // namespace runout

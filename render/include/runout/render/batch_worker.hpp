@@ -1,7 +1,8 @@
 // A queue of items processed in order by one helper thread, only while its producer lets it
-// (open). A movie's frames are drawn and encoded while the physics threads wait for them (the
-// batch is full) or after the run, never beside a stepping physics thread: preempting one
-// mid-phase stalls its partner at the next barrier, so a frame would cost twice its CPU time.
+// (open). Where the physics takes every core, a movie's frames are drawn and encoded while the
+// physics threads wait for them (a batch is full) or after the run, never beside a stepping
+// physics thread: preempting one mid-phase stalls its partner at the next barrier, so a frame
+// would cost twice its CPU time. Where it leaves a core free, the helpers work there.
 // The helper runs at normal priority, so other processes cannot starve it: the SCHED_IDLE
 // helpers it replaces got no CPU while other programs kept every core busy (the 5 s quick
 // movie took 200 s; docs/performance.md, issue 12). The first error it raises is rethrown to
@@ -46,6 +47,11 @@ class BatchWorker {
     queue_.push_back(std::move(item));
     lock.unlock();
     changed_.notify_all();
+  }
+  // Until a push with this limit would not wait; any number of threads may wait at once.
+  void wait_for_room(std::size_t limit) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return !open_ || queue_.size() < limit || done_; });
   }
   std::size_t queued() {
     std::lock_guard lock(mutex_);

@@ -14,10 +14,11 @@
 
 namespace runout::render {
 
-// The simulation thread only plans each frame (camera, colours: a copy of the disc state). A
-// batch of plans is then drawn by a drawing thread, which hands each picture to the PNG writer
-// and the video encoder's thread, while every physics thread waits asleep: the two helpers
-// have the cores to themselves and never preempt a stepping physics thread.
+// The simulation thread only plans each frame (camera, colours: a copy of the disc state); a
+// drawing thread draws it and hands it to the PNG writer and the video encoder's thread. Where
+// the physics takes every core, the helpers draw and encode a batch of plans at a time while
+// every physics thread waits asleep, so they never preempt a stepping physics thread; where
+// it leaves a core free, they work there beside it.
 class MovieRecorder : public Observer {
  public:
   // `video_path` empty: no video; `png_dir` empty: no PNG sequence. `first`: the World the
