@@ -66,7 +66,11 @@ std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes)
 int remove_stale_temporaries(const std::string& folder) {
   std::error_code ec;
   int removed = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+  // The folders below too: a kill -9 during a staged frame's write leaves its temporary in
+  // DIR/.partial/vtk, which would be published with the frames.
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    const auto& entry = *it;
     const std::string name = entry.path().filename().string();
     const auto at = name.rfind(".tmp.");
     if (at == std::string::npos || at + 5 >= name.size()) continue;

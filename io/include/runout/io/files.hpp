@@ -14,8 +14,8 @@ std::string read_file(const std::string& path);  // throws IoError
 // Reads a regular file of at most `max_bytes` (a FIFO, a device such as /dev/zero, a folder or
 // a larger file is refused by name before a byte is read, so nothing blocks or fills memory).
 std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes);
-// Removes `folder`'s temporary files (NAME.tmp.PID) left by runout processes that no longer
-// run (a kill -9 between write and rename); returns how many.
+// Removes the temporary files (NAME.tmp.PID) in `folder` and the folders below it left by
+// runout processes that no longer run (a kill -9 between write and rename); returns how many.
 int remove_stale_temporaries(const std::string& folder);
 bool file_exists(const std::string& path);
 void make_directories(const std::string& path);  // throws IoError
