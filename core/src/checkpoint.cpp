@@ -55,6 +55,25 @@ void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int
   for (double v : c.history) if (!std::isfinite(v)) bad();
 }
 
+// A contact list as a checkpoint keeps it (pairs: partner j; walls: the segment): rows,
+// partners, history width, history. A world that has not stepped yet has no lists: empty rows
+// for every disc.
+template <class Contacts>
+void put_contacts(ByteWriter& w, const Contacts& c, const std::vector<std::int32_t>& partner, std::size_t discs) {
+  const bool built = c.row_start.size() == discs + 1;
+  w.put_vector(built ? c.row_start : std::vector<std::int32_t>(discs + 1, 0));
+  w.put_vector(built ? partner : std::vector<std::int32_t>{});
+  w.put<std::int32_t>(c.history_width);
+  w.put_vector(built ? c.history : std::vector<double>{});
+}
+template <class Contacts>
+void get_contacts(ByteReader& r, Contacts& c, std::vector<std::int32_t>& partner) {
+  c.row_start = r.get_vector<std::int32_t>();
+  partner = r.get_vector<std::int32_t>();
+  c.history_width = r.get<std::int32_t>();
+  c.history = r.get_vector<double>();
+}
+
 }  // namespace
 
 std::string seal_checkpoint(std::string_view payload) {
@@ -86,20 +105,8 @@ std::string encode_checkpoint(const World& world, std::uint64_t scene_key,
   std::vector<std::uint8_t> active;
   for (const auto& s : world.segments()) active.push_back(s.active ? 1 : 0);
   w.put_vector(active);
-  // A world that has not stepped yet has no lists: write empty rows for every disc.
-  const std::vector<std::int32_t> no_rows(p.size() + 1, 0);
-  const PairContacts& c = world.pairs();
-  const bool pairs_built = c.row_start.size() == p.size() + 1;
-  w.put_vector(pairs_built ? c.row_start : no_rows);
-  w.put_vector(pairs_built ? c.j : std::vector<std::int32_t>{});
-  w.put<std::int32_t>(c.history_width);
-  w.put_vector(pairs_built ? c.history : std::vector<double>{});
-  const WallContacts& wc = world.wall_contacts();
-  const bool walls_built = wc.row_start.size() == p.size() + 1;
-  w.put_vector(walls_built ? wc.row_start : no_rows);
-  w.put_vector(walls_built ? wc.segment : std::vector<std::int32_t>{});
-  w.put<std::int32_t>(wc.history_width);
-  w.put_vector(walls_built ? wc.history : std::vector<double>{});
+  put_contacts(w, world.pairs(), world.pairs().j, p.size());
+  put_contacts(w, world.wall_contacts(), world.wall_contacts().segment, p.size());
   w.put_string(run_state);
   return seal_checkpoint(w.bytes());
 }
@@ -147,12 +154,8 @@ Checkpoint read_checkpoint(std::string_view bytes, std::uint64_t scene_key, cons
   for (std::size_t k = 0; k < n; ++k) p.inv_mass[k] = 1.0 / p.mass[k];
 
   c.active_segments = r.get_vector<std::uint8_t>();
-  for (auto* contacts : {&c.pairs.row_start, &c.pairs.j}) *contacts = r.get_vector<std::int32_t>();
-  c.pairs.history_width = r.get<std::int32_t>();
-  c.pairs.history = r.get_vector<double>();
-  for (auto* contacts : {&c.walls.row_start, &c.walls.segment}) *contacts = r.get_vector<std::int32_t>();
-  c.walls.history_width = r.get<std::int32_t>();
-  c.walls.history = r.get_vector<double>();
+  get_contacts(r, c.pairs, c.pairs.j);
+  get_contacts(r, c.walls, c.walls.segment);
   c.run_state = r.get_string();
   if (!r.done()) throw IoError(name + ": checkpoint has trailing bytes");
   check_rows(c.pairs.row_start, c.pairs.j, c.pairs, n, static_cast<std::int64_t>(n), true, name);
