@@ -2,10 +2,7 @@
 // templated on the contact model (contact/registry.hpp). A source turns contact q into its
 // kinematics; the model turns those and the history into forces and torques; the kernel stores
 // them and books the ledger. A wall plays j with zero velocity, spin and radius.
-#include <omp.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "step_phases.hpp"
@@ -168,47 +165,23 @@ struct Kernel {
   }
 };
 
-// Runs the pair kernel over [0, n) and the wall kernel over [0, nw). Forces are per contact,
-// so any split gives the same bits; the ledger's sums are taken over fixed blocks of contacts
-// added in order, so they are the same bits for every thread count too (a resumed run may use
-// another, SPEC §8). Without the ledger, thread t takes the pairs from split(t, T) (split(0, T)
-// = 0, split(T, T) = n) and then its share of the walls, in one parallel region: the walls are
-// too few to be worth a fork and join of their own.
-template <class PairKernel, class WallKernel, class Split>
-PassSums run(const PairKernel& pairs, std::int64_t n, const WallKernel& walls, std::int64_t nw,
-             int threads, bool ledger, std::vector<PassSums>& blocks, const Split& split) {
-  auto merge = [](PassSums a, const PassSums& b) {
-    a.worst = std::max(a.worst, b.worst);
-    a.loss_normal += b.loss_normal;
-    a.loss_friction += b.loss_friction;
-    a.loss_rolling += b.loss_rolling;
-    return a;
-  };
-  if (!ledger) {
-    if (threads == 1 || n + nw < 64) return merge(pairs(0, n), walls(0, nw));
-    PassSums part[kMaxThreads] = {};
-#pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num(), T = omp_get_num_threads();
-      part[t] = merge(pairs(split(t, T), split(t + 1, T)), walls(nw * t / T, nw * (t + 1) / T));
-    }
-    PassSums total;
-    for (int t = 0; t < threads; ++t) total.worst = std::max(total.worst, part[t].worst);
-    return total;
+// Runs a kernel over contacts [lo, hi) of `count`, whose ends are block ends (kLedgerBlock).
+// With the ledger, each block's sums go to blocks[b] and are added in block order after every
+// thread is done (merge_ledger), so they are the same bits whatever the thread count and
+// however the blocks are shared (a resumed run may use another count, SPEC §8).
+template <class Kernel>
+PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
+                    PassSums* blocks) {
+  if (!ledger) return kernel(lo, hi);
+  PassSums worst;
+  // An empty range may start at the contact count, inside the last block: that block is
+  // another thread's.
+  if (lo >= hi) return worst;
+  for (std::int64_t b = lo / kLedgerBlock; b * kLedgerBlock < hi; ++b) {
+    blocks[b] = kernel(b * kLedgerBlock, std::min(hi, (b + 1) * kLedgerBlock));
+    worst.worst = std::max(worst.worst, blocks[b].worst);
   }
-  auto blocked = [&](const auto& kernel, std::int64_t count_of) {
-    constexpr std::int64_t kBlock = 256;  // small enough to balance two threads on a few thousand pairs
-    const std::int64_t count = (count_of + kBlock - 1) / kBlock;
-    blocks.resize(static_cast<std::size_t>(count));
-#pragma omp parallel for num_threads(threads) if (threads > 1 && count > 1) schedule(static)
-    for (std::int64_t b = 0; b < count; ++b)
-      blocks[b] = kernel(b * kBlock, std::min(count_of, (b + 1) * kBlock));
-    PassSums total;
-    for (const PassSums& part : blocks) total = merge(total, part);
-    return total;
-  };
-  const PassSums pair_sums = blocked(pairs, n);
-  return merge(pair_sums, blocked(walls, nw));
+  return worst;
 }
 
 PairSource pair_source(const StepContext& step, const Particles& p, const PairContacts& c) {
@@ -219,38 +192,26 @@ WallSource wall_source(const StepContext& step, const Particles& p, const WallCo
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
 }
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 template <class Model, bool kLedger>
 PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
-                     WallContacts& walls, std::vector<PassSums>& blocks,
-                     StepProfile& profile) {
+                     WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger) {
   const StepSettings& st = step.settings;
-  auto t0 = Clock::now();
   const auto pair_law = Model::tables(step.table.pair);
   const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law),
                                               st.impact_rate, pairs.history.data(),
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque.data()};
-  // Equal shares of the pairs: each costs the same. Splitting at the first pair of each
-  // thread's block of discs (disc_block_start, balanced for the sums) gave thread 0 4 % more
-  // pairs on the thesis pile and 8 % more time (docs/performance.md, issue 11).
-  auto pair_split = [&](int t, int T) { return static_cast<std::int64_t>(pairs.size()) * t / T; };
   const auto wall_law = Model::tables(step.table.wall);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, walls.history.data(),
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
                                               walls.torque.data()};
-  const PassSums sums = run(pk, static_cast<std::int64_t>(pairs.size()), wk,
-                            static_cast<std::int64_t>(walls.size()), st.threads, kLedger, blocks,
-                            pair_split);
-  profile.contact_forces += seconds_since(t0);
-  return sums;
+  const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data());
+  const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data());
+  return {std::max(a.worst, b.worst), a.loss_normal + b.loss_normal,
+          a.loss_friction + b.loss_friction, a.loss_rolling + b.loss_rolling};
 }
 
 template <class Model, class Source, class Out>
@@ -270,14 +231,28 @@ void energy_of(const Source& source, const typename Model::Tables& tables,
 
 }  // namespace
 
+ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
+                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n) {
+  // The contacts of the block's rows, both ends moved to the next block end: the block ends
+  // of consecutive disc blocks meet, so every contact is taken once.
+  auto at = [&](const std::vector<std::int32_t>& row_start, std::int64_t disc, std::int64_t count) {
+    if (disc >= n) return count;
+    const std::int64_t q = row_start.empty() ? 0 : row_start[disc];
+    return std::min(count, (q + kLedgerBlock - 1) / kLedgerBlock * kLedgerBlock);
+  };
+  const auto np = static_cast<std::int64_t>(pairs.size()), nw = static_cast<std::int64_t>(walls.size());
+  return {at(pairs.row_start, disc_lo, np), at(pairs.row_start, disc_hi, np),
+          at(walls.row_start, disc_lo, nw), at(walls.row_start, disc_hi, nw)};
+}
+
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, std::vector<PassSums>& ledger_blocks, StepProfile& profile) {
+                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger) {
   PassSums sums;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
     sums = step.settings.track_energy
-               ? forces_with<Model, true>(step, p, pairs, walls, ledger_blocks, profile)
-               : forces_with<Model, false>(step, p, pairs, walls, ledger_blocks, profile);
+               ? forces_with<Model, true>(step, p, pairs, walls, range, ledger)
+               : forces_with<Model, false>(step, p, pairs, walls, range, ledger);
   });
   return sums;
 }
@@ -296,3 +271,30 @@ ContactEnergy contact_energy(const StepContext& step, const Particles& p,
 }
 
 }  // namespace runout::phases
+
+namespace runout {
+
+void LedgerBlocks::size_for(const PairContacts& pairs, const WallContacts& walls) {
+  auto blocks = [](std::size_t count) { return (count + kLedgerBlock - 1) / kLedgerBlock; };
+  this->pairs.resize(blocks(pairs.size()));
+  this->walls.resize(blocks(walls.size()));
+}
+
+PassSums LedgerBlocks::total() const {
+  // The pairs' sum plus the walls' sum, each added from zero in block order.
+  auto sum = [](const std::vector<PassSums>& blocks) {
+    PassSums t;
+    for (const PassSums& b : blocks) {
+      t.worst = std::max(t.worst, b.worst);
+      t.loss_normal += b.loss_normal;
+      t.loss_friction += b.loss_friction;
+      t.loss_rolling += b.loss_rolling;
+    }
+    return t;
+  };
+  const PassSums a = sum(pairs), b = sum(walls);
+  return {std::max(a.worst, b.worst), a.loss_normal + b.loss_normal,
+          a.loss_friction + b.loss_friction, a.loss_rolling + b.loss_rolling};
+}
+
+}  // namespace runout

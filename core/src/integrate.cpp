@@ -1,8 +1,6 @@
 // Force sums and the kick–drift both integrators are made of (SPEC §2, eqs. 2.15–2.18):
 //   symplectic Euler: gather, v += a dt, x += v dt
 //   velocity Verlet:  v += a dt/2, x += v dt | forces | gather, v += a dt/2
-#include <omp.h>
-
 #include <cmath>
 #include <limits>
 
@@ -11,18 +9,6 @@
 namespace runout::phases {
 
 namespace {
-
-// Runs body(begin, end, thread) over contiguous blocks of the discs, one per thread; block t
-// starts at boundary(t, T) (boundary(0, T) = 0, boundary(T, T) = the disc count). One thread
-// calls its body directly instead (advance).
-template <class Body, class Boundary>
-void for_blocks(int threads, const Body& body, const Boundary& boundary) {
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num(), T = omp_get_num_threads();
-    body(boundary(t, T), boundary(t + 1, T), t);
-  }
-}
 
 // The sum of the contact forces and torques on each disc of [lo, hi) plus gravity, as
 // accelerations (eqs. 2.10–2.11): its run of pair pushes (a slice's discs side by side, one
@@ -113,29 +99,6 @@ Motion kick_drift(std::int64_t lo, std::int64_t hi, double kick, double drift,
 
 }  // namespace
 
-// The first disc of block t of T when the work of a slice is its slots plus one per disc (its
-// update): large discs have runs several times longer than small ones and gather where the
-// flow has segregated them, so equal numbers of discs would leave one thread waiting. Blocks
-// start at whole windows of lanes (DiscRuns): a window's discs are summed by its slices.
-std::int64_t disc_block_start(const DiscRuns& runs, std::int64_t n, int t, int T) {
-  if (t >= T) return n;
-  constexpr std::int64_t L = DiscRuns::kSlice, S = DiscRuns::kWindow / DiscRuns::kSlice;
-  const auto slices = static_cast<std::int64_t>(runs.slices());
-  const auto windows = (slices + S - 1) / S;
-  // The work before window w: its slots and one per disc lane.
-  auto before = [&](std::int64_t w) {
-    const std::int64_t g = std::min(slices, w * S);
-    return runs.slice_start[g] + L * g;
-  };
-  const std::int64_t goal = before(windows) * t / T;
-  std::int64_t lo = 0, hi = windows;  // first window w with before(w) >= goal
-  while (lo < hi) {
-    const std::int64_t mid = (lo + hi) / 2;
-    if (before(mid) < goal) lo = mid + 1; else hi = mid;
-  }
-  return std::min(n, DiscRuns::kWindow * lo);
-}
-
 Motion Motion::merge(const Motion& a, const Motion& b) {
   return {std::min(a.ux_lo, b.ux_lo), std::max(a.ux_hi, b.ux_hi),
           std::min(a.uy_lo, b.uy_lo), std::max(a.uy_hi, b.uy_hi),
@@ -149,32 +112,19 @@ double Motion::list_drift() const {
 
 Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
                const WallContacts& w, const DiscRuns& runs, const std::vector<double>& x_at_rebuild,
-               const std::vector<double>& y_at_rebuild, bool gather, double kick, double drift) {
+               const std::vector<double>& y_at_rebuild, std::int64_t lo, std::int64_t hi,
+               bool gather, double kick, double drift) {
   const StepSettings& st = step.settings;
-  const auto n = static_cast<std::int64_t>(p.size());
-  const bool runs_ready = runs.slices() == static_cast<std::size_t>((n + DiscRuns::kSlice - 1) / DiscRuns::kSlice);
-  auto boundary = [&](int t, int T) {
-    return runs_ready ? disc_block_start(runs, n, t, T) : n * t / T;
-  };
-  auto block = [&](std::int64_t lo, std::int64_t hi) {
-    if (gather) {
-      accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
-                    p.inv_inertia.data(), p.ax.data(), p.ay.data(), p.alpha.data());
-      if (st.local_damping > 0)
-        damp(st.local_damping, lo, hi, p.ax.data(), p.ay.data(), p.alpha.data(), p.vx.data(),
-             p.vy.data(), p.omega.data());
-    }
-    return kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
-                      p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(), p.alpha.data(),
-                      x_at_rebuild.data(), y_at_rebuild.data());
-  };
-  if (st.threads <= 1) return block(0, n);  // without a per-thread array to set up each step
-  Motion part[kMaxThreads];
-  for_blocks(st.threads, [&](std::int64_t lo, std::int64_t hi, int t) { part[t] = block(lo, hi); },
-             boundary);
-  Motion total = part[0];
-  for (int t = 1; t < st.threads; ++t) total = Motion::merge(total, part[t]);
-  return total;
+  if (gather) {
+    accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
+                  p.inv_inertia.data(), p.ax.data(), p.ay.data(), p.alpha.data());
+    if (st.local_damping > 0)
+      damp(st.local_damping, lo, hi, p.ax.data(), p.ay.data(), p.alpha.data(), p.vx.data(),
+           p.vy.data(), p.omega.data());
+  }
+  return kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
+                    p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(), p.alpha.data(),
+                    x_at_rebuild.data(), y_at_rebuild.data());
 }
 
 }  // namespace runout::phases

@@ -16,14 +16,19 @@ struct StepContext {
   const std::vector<Segment>& segments;
 };
 
-// The first disc of thread t's block of T, for the force sums and the update (integrate.cpp):
-// blocks of equal work (a disc's run slots plus one), starting at whole windows of lanes.
-std::int64_t disc_block_start(const DiscRuns& runs, std::int64_t n, int t, int T);
+// The contacts a thread computes for its block of discs [disc_lo, disc_hi): the pairs of the
+// block's rows and its discs' wall contacts, each end moved up to a ledger block's end.
+struct ContactRange {
+  std::int64_t pair_lo = 0, pair_hi = 0, wall_lo = 0, wall_hi = 0;
+};
+ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
+                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n);
 
-// Contact forces of every listed pair and disc–wall contact (contact_forces.cpp): writes the
-// per-contact forces and torques and updates the history. `ledger_blocks` is scratch.
+// Contact forces of the range's pairs and disc–wall contacts (contact_forces.cpp): writes the
+// per-contact forces and torques and updates the history. Returns the largest guarded
+// overlap; with the ledger, the losses go to `ledger`'s blocks (LedgerBlocks::total).
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, std::vector<PassSums>& ledger_blocks, StepProfile& profile);
+                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger);
 
 // Spring energies and committed losses of the touching contacts now (contact_forces.cpp).
 struct ContactEnergy {
@@ -32,9 +37,10 @@ struct ContactEnergy {
 ContactEnergy contact_energy(const StepContext& step, const Particles& p,
                              const PairContacts& pairs, const WallContacts& walls);
 
-// Sums each disc's contact forces and torques plus gravity into accelerations (eqs.
-// 2.10–2.11), kicks v += a kick and drifts x += v drift (integrate.cpp). Returns how far the
-// discs have moved since the lists were built at (x0, y0) and whether the state stayed finite.
+// Sums the contact forces and torques of each disc of [lo, hi) plus gravity into
+// accelerations (eqs. 2.10–2.11) when `gather`, kicks v += a kick and drifts x += v drift
+// (integrate.cpp). Returns how far the discs have moved since the lists were built at
+// (x0, y0) and whether the state stayed finite. `lo` starts a window of lanes (DiscRuns).
 struct Motion {
   // The box holding every disc's displacement since the rebuild, and the largest one.
   double ux_lo = std::numeric_limits<double>::infinity(), ux_hi = -ux_lo;
@@ -49,6 +55,7 @@ struct Motion {
 };
 Motion advance(const StepContext& step, Particles& p, const PairContacts& pairs,
                const WallContacts& walls, const DiscRuns& runs, const std::vector<double>& x0,
-               const std::vector<double>& y0, bool gather, double kick, double drift);
+               const std::vector<double>& y0, std::int64_t lo, std::int64_t hi, bool gather,
+               double kick, double drift);
 
 }  // namespace runout::phases

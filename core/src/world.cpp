@@ -2,6 +2,8 @@
 // reordering. The phases themselves: contact_forces.cpp, integrate.cpp; checks: safety.cpp.
 #include "runout/world.hpp"
 
+#include <omp.h>
+
 #include <chrono>
 #include <tuple>
 #include <cmath>
@@ -154,23 +156,75 @@ void World::rebuild_lists() {
   ++profile_.rebuilds;
 }
 
-void World::compute_forces() {
-  const PassSums sums = phases::contact_forces({settings_, table_, segments_}, particles_, pairs_,
-                                               wall_contacts_, ledger_blocks_, profile_);
-  ledger_.normal += sums.loss_normal;
-  ledger_.friction += sums.loss_friction;
-  ledger_.rolling += sums.loss_rolling;
-  check_overlap(sums.worst);
-}
-
-void World::advance(bool gather, double kick, double drift) {
+void World::forces_and_motion(bool forces, double kick, double drift) {
+  const phases::StepContext ctx{settings_, table_, segments_};
+  const auto n = static_cast<std::int64_t>(particles_.size());
+  const bool ledger = forces && settings_.track_energy;
+  if (ledger) ledger_blocks_.size_for(pairs_, wall_contacts_);
+  // Thread t's share: the contacts of its discs' rows, then (once every force is known: a
+  // disc's incoming pushes come from other rows) its discs' sums, kick and drift.
+  auto contacts_of = [&](std::int64_t lo, std::int64_t hi) {
+    return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
+                                  phases::contact_range(pairs_, wall_contacts_, lo, hi, n), ledger_blocks_);
+  };
+  auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
+    return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
+                           y_at_rebuild_, lo, hi, forces, kick, drift);
+  };
   const auto t0 = Clock::now();
-  const phases::Motion m = phases::advance({settings_, table_, segments_}, particles_, pairs_,
-                                           wall_contacts_, runs_, x_at_rebuild_, y_at_rebuild_,
-                                           gather, kick, drift);
-  list_drift_ = m.list_drift();
-  finite_ = m.finite;
-  profile_.integrate += seconds_since(t0);
+  PassSums sums;
+  phases::Motion motion;
+  double forces_seconds = 0;
+  const int T = settings_.threads;
+  if (T == 1) {
+    if (forces) sums = contacts_of(0, n);
+    forces_seconds = seconds_since(t0);
+    motion = motion_of(0, n);
+  } else {
+    contact_blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
+    motion_blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
+    const std::vector<std::int64_t>& b = contact_blocks_.bounds();
+    const std::vector<std::int64_t>& m = motion_blocks_.bounds();
+    PassSums part[kMaxThreads];
+    phases::Motion moved[kMaxThreads];
+#pragma omp parallel num_threads(T)
+    {
+      // Fewer threads than asked (an OpenMP limit) take several blocks each.
+      const int first = omp_get_thread_num(), stride = omp_get_num_threads();
+      for (int t = first; t < T; t += stride) {
+        const auto start = Clock::now();
+        if (forces) part[t] = contacts_of(b[t], b[t + 1]);
+        contact_blocks_.record(t, seconds_since(start));
+      }
+      if (forces) {
+#pragma omp barrier
+      }
+      if (first == 0) forces_seconds = seconds_since(t0);
+      for (int t = first; t < T; t += stride) {
+        const auto start = Clock::now();
+        moved[t] = motion_of(m[t], m[t + 1]);
+        motion_blocks_.record(t, seconds_since(start));
+      }
+    }
+    motion = moved[0];
+    for (int t = 0; t < T; ++t) {
+      sums.worst = std::max(sums.worst, part[t].worst);
+      motion = phases::Motion::merge(motion, moved[t]);
+    }
+    if (forces) contact_blocks_.after_step(pairs_, wall_contacts_, runs_);
+    motion_blocks_.after_step(pairs_, wall_contacts_, runs_);
+  }
+  if (ledger) {
+    const PassSums total = ledger_blocks_.total();
+    ledger_.normal += total.loss_normal;
+    ledger_.friction += total.loss_friction;
+    ledger_.rolling += total.loss_rolling;
+  }
+  list_drift_ = motion.list_drift();
+  finite_ = motion.finite;
+  profile_.contact_forces += forces_seconds;
+  profile_.integrate += seconds_since(t0) - forces_seconds;
+  if (forces) check_overlap(sums.worst);
 }
 
 // Symplectic Euler (the seed's, eqs. 2.15–2.18): [rebuild] forces, kick dt, drift dt.
@@ -188,18 +242,15 @@ void World::step() {
   };
   if (settings_.integrator == IntegratorKind::symplectic_euler) {
     rebuild_if_moved();
-    compute_forces();
-    advance(true, dt, dt);
+    forces_and_motion(true, dt, dt);
   } else {
     if (!lists_valid_) {  // first step: accelerations at the initial state
       rebuild_lists();
-      compute_forces();
-      advance(true, 0.0, 0.0);
+      forces_and_motion(true, 0.0, 0.0);
     }
-    advance(false, 0.5 * dt, dt);
+    forces_and_motion(false, 0.5 * dt, dt);
     rebuild_if_moved();
-    compute_forces();
-    advance(true, 0.5 * dt, 0.0);
+    forces_and_motion(true, 0.5 * dt, 0.0);
   }
   time_ += dt;
   ++steps_;

@@ -16,6 +16,7 @@
 
 #include "runout/contact/registry.hpp"
 #include "runout/derive.hpp"
+#include "runout/load_balance.hpp"
 #include "runout/neighbor_list.hpp"
 #include "runout/particles.hpp"
 #include "runout/scene.hpp"
@@ -59,6 +60,15 @@ struct StepProfile {
 // the ledger, the energy it dissipated (J).
 struct PassSums {
   double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
+};
+
+// The force pass's ledger sums per fixed block of contacts, added in block order whatever
+// thread computed each block (contact_forces.cpp): scratch of the World.
+inline constexpr std::int64_t kLedgerBlock = 256;
+struct LedgerBlocks {
+  std::vector<PassSums> pairs, walls;
+  void size_for(const PairContacts& pairs, const WallContacts& walls);
+  PassSums total() const;  // the largest overlap share and the losses, in block order
 };
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
@@ -129,9 +139,9 @@ class World {
  private:
   void rebuild_lists();
   void reorder_discs();
-  void compute_forces();
-  // Kick v += a kick (a from the contact sums first when `gather`), then drift x += v drift.
-  void advance(bool gather, double kick, double drift);
+  // With `forces`: contact forces, then a from the contact sums; then kick v += a kick and
+  // drift x += v drift. One parallel region: each thread takes its block of discs (balance_).
+  void forces_and_motion(bool forces, double kick, double drift);
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -162,7 +172,9 @@ class World {
   double guard_radius_scale_ = 1.0;
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
-  std::vector<PassSums> ledger_blocks_;  // per block of pairs, scratch of the contact forces
+  LedgerBlocks ledger_blocks_;
+  // Each thread's discs in the force pass and in the sums, kick and drift (load_balance.hpp).
+  LoadBalance contact_blocks_{LoadBalance::Work::contacts}, motion_blocks_{LoadBalance::Work::sums};
 };
 
 }  // namespace runout

@@ -1,0 +1,77 @@
+#include "runout/load_balance.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace runout {
+
+void LoadBalance::estimate(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs) {
+  constexpr std::int64_t W = DiscRuns::kWindow, L = DiscRuns::kSlice, S = W / L;
+  const std::int64_t n = n_, windows = (n + W - 1) / W;
+  const auto slices = static_cast<std::int64_t>(runs.slices());
+  const auto rows = static_cast<std::size_t>(n) + 1;
+  // Before the first list (or without one) every disc counts the same.
+  const bool lists = slices == (n + L - 1) / L && pairs.row_start.size() == rows && walls.row_start.size() == rows;
+  work_before_.resize(static_cast<std::size_t>(windows) + 1);
+  for (std::int64_t w = 0; w <= windows; ++w) {
+    const std::int64_t disc = std::min(n, w * W), g = std::min(slices, w * S);
+    work_before_[w] = !lists                 ? disc
+                      : work_ == Work::contacts ? pairs.row_start[disc] + walls.row_start[disc]
+                                                : runs.slice_start[g] + L * g;
+  }
+}
+
+void LoadBalance::prepare(const PairContacts& pairs, const WallContacts& walls,
+                          const DiscRuns& runs, std::int64_t n, int threads) {
+  if (n == n_ && threads == threads_) return;
+  n_ = n;
+  threads_ = threads;
+  steps_ = 0;
+  busy_.assign(static_cast<std::size_t>(threads), 0.0);
+  speed_.assign(static_cast<std::size_t>(threads), 1.0);
+  estimate(pairs, walls, runs);
+  place();
+}
+
+void LoadBalance::place() {
+  const double total_speed = std::accumulate(speed_.begin(), speed_.end(), 0.0);
+  const double total_work = static_cast<double>(work_before_.back());
+  bounds_.assign(static_cast<std::size_t>(threads_) + 1, n_);
+  bounds_[0] = 0;
+  double speed_before = 0;
+  for (int t = 1; t < threads_; ++t) {
+    speed_before += speed_[t - 1];
+    const double goal = total_work * speed_before / total_speed;
+    // The first window whose work before it reaches the goal.
+    const auto w = std::lower_bound(work_before_.begin(), work_before_.end(), goal,
+                                    [](std::int64_t a, double g) { return static_cast<double>(a) < g; }) -
+                   work_before_.begin();
+    bounds_[t] = std::min(n_, DiscRuns::kWindow * static_cast<std::int64_t>(w));
+  }
+}
+
+void LoadBalance::after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs) {
+  if (threads_ < 2 || ++steps_ < kPeriod) return;
+  steps_ = 0;
+  // The work each block held, by the lists now (they change rarely within a period).
+  estimate(pairs, walls, runs);
+  auto work_at = [&](std::int64_t disc) {
+    return static_cast<double>(work_before_[static_cast<std::size_t>((disc + DiscRuns::kWindow - 1) / DiscRuns::kWindow)]);
+  };
+  std::vector<double> measured(static_cast<std::size_t>(threads_), 0.0);
+  double sum = 0;
+  for (int t = 0; t < threads_; ++t) {
+    const double work = work_at(bounds_[t + 1]) - work_at(bounds_[t]);
+    measured[t] = work > 0 && busy_[t] > 0 ? work / busy_[t] : 0.0;
+    sum += measured[t];
+  }
+  const bool all_measured = std::all_of(measured.begin(), measured.end(), [](double m) { return m > 0; });
+  std::fill(busy_.begin(), busy_.end(), 0.0);
+  if (!all_measured) return;  // an empty block tells nothing of its thread's speed
+  // Speeds relative to their mean, halfway from the last estimate to this period's.
+  const double mean = sum / threads_;
+  for (int t = 0; t < threads_; ++t) speed_[t] = 0.5 * speed_[t] + 0.5 * (measured[t] / mean);
+  place();
+}
+
+}  // namespace runout
