@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# One thread against two on the bench pile, alternating so the machine's drift hits both alike.
+# Usage: scripts/thread_scaling.sh BIN [ROUNDS=5] [STEPS=40000] [extra bench options...]
+# Prints each round's pair and the medians; the last line is "two/one: R" (ratio of medians).
+set -euo pipefail
+B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
+rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null | sed -n 's/^particle_steps_per_second: *//p'; }
+one=(); two=()
+for i in $(seq "$R"); do
+  a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")
+  printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s\n' "$i" "$a" "$b"
+done
+/usr/bin/python3 -c "
+import statistics as s
+a=[float(x) for x in '${one[*]}'.split()]; b=[float(x) for x in '${two[*]}'.split()]
+print(f'medians: 1 thread {s.median(a):.3g}, 2 threads {s.median(b):.3g} particle-steps/s')
+print(f'two/one: {s.median(b)/s.median(a):.2f}')"
