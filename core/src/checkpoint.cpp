@@ -1,6 +1,7 @@
 #include "runout/checkpoint.hpp"
 
 #include <cmath>
+#include <string_view>
 #include <type_traits>
 
 #include "runout/errors.hpp"
@@ -23,15 +24,25 @@ void check_state(const Particles& p, const std::string& name) {
   auto bad = [&](const std::string& what, std::size_t k) {
     throw IoError(name + ": checkpoint is corrupt (" + what + " of disc " + std::to_string(k) + ")");
   };
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    for (double v : {p.x[k], p.y[k], p.vx[k], p.vy[k], p.omega[k], p.angle[k], p.ax[k], p.ay[k],
-                     p.alpha[k]})
-      if (!std::isfinite(v)) bad("a non-finite position, velocity or acceleration", k);
-    if (!(p.radius[k] > 0) || !std::isfinite(p.radius[k])) bad("radius", k);
-    if (!(p.mass[k] > 0) || !std::isfinite(p.mass[k]) || !std::isfinite(1.0 / p.mass[k])) bad("mass", k);
-    if (!(p.inv_inertia[k] > 0) || !std::isfinite(p.inv_inertia[k])) bad("moment of inertia", k);
-    if (p.species[k] < 0) bad("species", k);
-  }
+  // Field by field from the discs' one field list (Particles::for_each_stored), so a field
+  // added there is checked too: every number finite; sizes, masses and inertias positive (and
+  // a mass whose inverse is finite); a species an index.
+  Particles::for_each_stored(p, [&](std::string_view field, const auto& v) {
+    using Value = typename std::decay_t<decltype(v)>::value_type;
+    const bool positive = field == "radius" || field == "mass" || field == "inv_inertia";
+    const std::string what = field == "inv_inertia"                ? std::string("moment of inertia")
+                             : positive || field == "species"     ? std::string(field)
+                                                                  : std::string("a non-finite position, velocity or acceleration");
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if constexpr (std::is_floating_point_v<Value>) {
+        const bool sane = std::isfinite(v[k]) && (!positive || v[k] > 0) &&
+                          (field != "mass" || std::isfinite(1.0 / v[k]));
+        if (!sane) bad(what, k);
+      } else if (field == "species" && v[k] < 0) {
+        bad(what, k);
+      }
+    }
+  });
 }
 
 // A contact list is rows of strictly increasing keys, one row per disc; pair keys are discs
