@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 
-#include <omp.h>
-
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
 
@@ -301,14 +299,6 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.max_overlap = scene_.output.series.overlap ? std::max(state_.max_overlap, r.final_energy.max_overlap) : none;
   r.profile = world_.profile();
   return r;
-}
-
-int available_cores() { return omp_get_num_procs(); }
-
-void wait_on_every_thread(int threads, const std::function<void()>& wait) {
-  if (threads <= 1) return wait();
-#pragma omp parallel num_threads(threads)
-  wait();
 }
 
 }  // namespace runout
