@@ -5,6 +5,10 @@
 
 namespace runout {
 
+namespace {
+constexpr std::int64_t kContactCost = 6;  // slots a contact's force costs (Work::step)
+}  // namespace
+
 void LoadBalance::estimate(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs) {
   constexpr std::int64_t W = DiscRuns::kWindow, L = DiscRuns::kSlice, S = W / L;
   const std::int64_t n = n_, windows = (n + W - 1) / W;
@@ -15,9 +19,12 @@ void LoadBalance::estimate(const PairContacts& pairs, const WallContacts& walls,
   work_before_.resize(static_cast<std::size_t>(windows) + 1);
   for (std::int64_t w = 0; w <= windows; ++w) {
     const std::int64_t disc = std::min(n, w * W), g = std::min(slices, w * S);
-    work_before_[w] = !lists                 ? disc
-                      : work_ == Work::contacts ? pairs.row_start[disc] + walls.row_start[disc]
-                                                : runs.slice_start[g] + L * g;
+    const std::int64_t contacts = lists ? pairs.row_start[disc] + walls.row_start[disc] : 0;
+    const std::int64_t sums = lists ? runs.slice_start[g] + L * g : 0;
+    work_before_[w] = !lists                  ? disc
+                      : work_ == Work::contacts ? contacts
+                      : work_ == Work::sums     ? sums
+                                                : kContactCost * contacts + sums;
   }
 }
 
@@ -34,6 +41,7 @@ void LoadBalance::prepare(const PairContacts& pairs, const WallContacts& walls,
 }
 
 void LoadBalance::place() {
+  const std::vector<std::int64_t> before = bounds_;
   const double total_speed = std::accumulate(speed_.begin(), speed_.end(), 0.0);
   const double total_work = static_cast<double>(work_before_.back());
   bounds_.assign(static_cast<std::size_t>(threads_) + 1, n_);
@@ -48,6 +56,7 @@ void LoadBalance::place() {
                    work_before_.begin();
     bounds_[t] = std::min(n_, DiscRuns::kWindow * static_cast<std::int64_t>(w));
   }
+  if (bounds_ != before) ++version_;
 }
 
 void LoadBalance::after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs) {

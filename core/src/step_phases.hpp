@@ -18,9 +18,7 @@ struct StepContext {
 
 // The contacts a thread computes for its block of discs [disc_lo, disc_hi): the pairs of the
 // block's rows and its discs' wall contacts, each end moved up to a ledger block's end.
-struct ContactRange {
-  std::int64_t pair_lo = 0, pair_hi = 0, wall_lo = 0, wall_hi = 0;
-};
+using runout::ContactRange;
 ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
                            std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n);
 

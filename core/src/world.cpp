@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <thread>
 #include <tuple>
 #include <cmath>
 
@@ -152,8 +153,36 @@ void World::rebuild_lists() {
   list_drift_ = 0;
   max_growth_ = 0;
   lists_valid_ = true;
+  ++lists_version_;
   profile_.rebuild += seconds_since(t0);
   ++profile_.rebuilds;
+}
+
+// Which contacts of each thread's share touch a later block's discs (the boundary ones: with
+// the discs numbered along x, a few rows at the end of the block), and how far they reach.
+void World::find_handoff(const std::vector<ContactRange>& range) {
+  const std::vector<std::int64_t>& b = blocks_.bounds();
+  const int T = static_cast<int>(range.size());
+  handoff_.boundary_pair.assign(static_cast<std::size_t>(T), 0);
+  handoff_.touched_end.assign(static_cast<std::size_t>(T), 0);
+  for (int t = 0; t < T; ++t) {
+    const ContactRange& r = range[t];
+    std::int64_t first = r.pair_hi, reach = b[t + 1];
+    for (std::int64_t q = r.pair_lo; q < r.pair_hi; ++q)
+      if (pairs_.j[q] >= b[t + 1]) {  // j > i: a pair whose i is beyond the block crosses too
+        first = std::min(first, q);
+        reach = std::max<std::int64_t>(reach, pairs_.j[q] + 1);
+      }
+    // The walls of the range are all computed before the flag; their discs may be beyond the
+    // block where the range's end was moved up to a ledger block's end.
+    for (std::int64_t q = r.wall_lo; q < r.wall_hi; ++q)
+      reach = std::max<std::int64_t>(reach, wall_contacts_.disc[q] + 1);
+    // A whole ledger block, so the ledger's blocks are each computed in one piece.
+    handoff_.boundary_pair[t] = std::max(r.pair_lo, first / kLedgerBlock * kLedgerBlock);
+    handoff_.touched_end[t] = reach;
+  }
+  handoff_.lists = lists_version_;
+  handoff_.blocks = blocks_.version();
 }
 
 void World::forces_and_motion(bool forces, double kick, double drift) {
@@ -161,11 +190,9 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   const auto n = static_cast<std::int64_t>(particles_.size());
   const bool ledger = forces && settings_.track_energy;
   if (ledger) ledger_blocks_.size_for(pairs_, wall_contacts_);
-  // Thread t's share: the contacts of its discs' rows, then (once every force is known: a
-  // disc's incoming pushes come from other rows) its discs' sums, kick and drift.
-  auto contacts_of = [&](std::int64_t lo, std::int64_t hi) {
+  auto contacts = [&](std::int64_t pair_lo, std::int64_t pair_hi, std::int64_t wall_lo, std::int64_t wall_hi) {
     return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
-                                  phases::contact_range(pairs_, wall_contacts_, lo, hi, n), ledger_blocks_);
+                                  {pair_lo, pair_hi, wall_lo, wall_hi}, ledger_blocks_);
   };
   auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
     return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
@@ -174,45 +201,71 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   const auto t0 = Clock::now();
   PassSums sums;
   phases::Motion motion;
-  double forces_seconds = 0;
   const int T = settings_.threads;
   if (T == 1) {
-    if (forces) sums = contacts_of(0, n);
-    forces_seconds = seconds_since(t0);
+    if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()));
+    profile_.contact_forces += seconds_since(t0);
     motion = motion_of(0, n);
   } else {
-    contact_blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
-    motion_blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
-    const std::vector<std::int64_t>& b = contact_blocks_.bounds();
-    const std::vector<std::int64_t>& m = motion_blocks_.bounds();
+    // Thread t takes the discs of block t for the whole step: the contacts of their rows, then
+    // their sums, kick and drift. A disc's sum reads only rows of its own or earlier blocks
+    // (i < j), so block t waits for nothing later; it waits for earlier threads only where
+    // their rows reach its discs (the handoff), and each thread computes those rows first.
+    blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
+    const std::vector<std::int64_t>& b = blocks_.bounds();
+    std::vector<ContactRange>& range = contact_ranges_;
+    range.resize(static_cast<std::size_t>(T));
+    for (int t = 0; t < T; ++t) range[t] = phases::contact_range(pairs_, wall_contacts_, b[t], b[t + 1], n);
+    if (handoff_.lists != lists_version_ || handoff_.blocks != blocks_.version() ||
+        handoff_.touched_end.size() != static_cast<std::size_t>(T))
+      find_handoff(range);
+    const std::int64_t pass = ++passes_;
     PassSums part[kMaxThreads];
     phases::Motion moved[kMaxThreads];
+    double forces_seconds = 0;
+    auto share = [&](int t) {
+      const auto start = Clock::now();
+      const ContactRange& r = range[t];
+      const std::int64_t split = std::min(handoff_.boundary_pair[t], r.pair_hi);
+      if (forces) {
+        const PassSums a = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+        ready_.flag[t].pass.store(pass, std::memory_order_release);
+        const PassSums c = contacts(r.pair_lo, split, 0, 0);
+        part[t].worst = std::max(a.worst, c.worst);
+      } else {
+        ready_.flag[t].pass.store(pass, std::memory_order_release);
+      }
+      if (t == 0) forces_seconds = seconds_since(start);
+      // First the discs no earlier thread's contacts reach, then (once those are done) the rest.
+      std::int64_t mid = b[t];
+      for (int u = 0; u < t; ++u) mid = std::max(mid, handoff_.touched_end[u]);
+      mid = std::min(b[t + 1], (mid + DiscRuns::kWindow - 1) / DiscRuns::kWindow * DiscRuns::kWindow);
+      const phases::Motion late = motion_of(mid, b[t + 1]);
+      auto busy = seconds_since(start);
+      // A short spin (the earlier thread is nearly always done by now), then yielding, so a
+      // run with more threads than cores does not spin away the core the other one needs.
+      for (int u = 0; u < t; ++u)
+        for (int spins = 0; ready_.flag[u].pass.load(std::memory_order_acquire) != pass; ++spins)
+          if (spins > 4096) std::this_thread::yield();
+      const auto resumed = Clock::now();
+      moved[t] = phases::Motion::merge(motion_of(b[t], mid), late);
+      blocks_.record(t, busy + seconds_since(resumed));
+    };
 #pragma omp parallel num_threads(T)
     {
-      // Fewer threads than asked (an OpenMP limit) take several blocks each.
-      const int first = omp_get_thread_num(), stride = omp_get_num_threads();
-      for (int t = first; t < T; t += stride) {
-        const auto start = Clock::now();
-        if (forces) part[t] = contacts_of(b[t], b[t + 1]);
-        contact_blocks_.record(t, seconds_since(start));
-      }
-      if (forces) {
-#pragma omp barrier
-      }
-      if (first == 0) forces_seconds = seconds_since(t0);
-      for (int t = first; t < T; t += stride) {
-        const auto start = Clock::now();
-        moved[t] = motion_of(m[t], m[t + 1]);
-        motion_blocks_.record(t, seconds_since(start));
-      }
+      // A smaller team than asked (an OpenMP limit) cannot hand off between its own blocks
+      // in this order: one thread then takes every block in turn.
+      const int team = omp_get_num_threads(), me = omp_get_thread_num();
+      if (team == T) share(me);
+      else if (me == 0)
+        for (int t = 0; t < T; ++t) share(t);
     }
-    motion = moved[0];
     for (int t = 0; t < T; ++t) {
       sums.worst = std::max(sums.worst, part[t].worst);
-      motion = phases::Motion::merge(motion, moved[t]);
+      motion = t == 0 ? moved[0] : phases::Motion::merge(motion, moved[t]);
     }
-    if (forces) contact_blocks_.after_step(pairs_, wall_contacts_, runs_);
-    motion_blocks_.after_step(pairs_, wall_contacts_, runs_);
+    blocks_.after_step(pairs_, wall_contacts_, runs_);
+    profile_.contact_forces += forces_seconds;
   }
   if (ledger) {
     const PassSums total = ledger_blocks_.total();
@@ -222,8 +275,7 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   }
   list_drift_ = motion.list_drift();
   finite_ = motion.finite;
-  profile_.contact_forces += forces_seconds;
-  profile_.integrate += seconds_since(t0) - forces_seconds;
+  profile_.integrate += seconds_since(t0);
   if (forces) check_overlap(sums.worst);
 }
 

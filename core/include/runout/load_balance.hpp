@@ -1,4 +1,4 @@
-// Which discs each thread takes in a phase of the step (World::forces_and_motion). No result
+// Which discs each thread takes in a step (World::forces_and_motion). No result
 // depends on it: each contact's force and each disc's sum are the same bits whoever computes
 // them (world.hpp), so the blocks follow the threads' measured speed. On a shared machine one
 // core can run a third slower than the other for seconds at a time (docs/performance.md), and
@@ -14,9 +14,10 @@ namespace runout {
 
 class LoadBalance {
  public:
-  // What a block's work is counted in: the contacts of its rows (the force pass) or its
-  // run slots and lanes (the sums, kick and drift).
-  enum class Work { contacts, sums };
+  // What a block's work is counted in: the contacts of its rows (the force pass), its run
+  // slots and lanes (the sums, kick and drift), or both (a whole step: a contact costs about
+  // six slots on the thesis pile, docs/performance.md).
+  enum class Work { contacts, sums, step };
   // Steps between two moves of the blocks' ends.
   static constexpr int kPeriod = 16;
 
@@ -34,6 +35,8 @@ class LoadBalance {
   // Every kPeriod steps, moves the blocks' ends so each thread's share of the estimated work
   // follows its measured speed (work done per busy second, smoothed over a few periods).
   void after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs);
+  // Changes whenever the blocks move.
+  std::int64_t version() const { return version_; }
 
  private:
   void estimate(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs);
@@ -42,6 +45,7 @@ class LoadBalance {
   Work work_;
   std::int64_t n_ = -1;
   int threads_ = 0, steps_ = 0;
+  std::int64_t version_ = 0;
   std::vector<std::int64_t> bounds_;
   std::vector<double> busy_, speed_;
   std::vector<std::int64_t> work_before_;  // estimated work before each window

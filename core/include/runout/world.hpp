@@ -11,7 +11,9 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "runout/contact/registry.hpp"
@@ -69,6 +71,11 @@ struct LedgerBlocks {
   std::vector<PassSums> pairs, walls;
   void size_for(const PairContacts& pairs, const WallContacts& walls);
   PassSums total() const;  // the largest overlap share and the losses, in block order
+};
+
+// Pairs [pair_lo, pair_hi) and wall contacts [wall_lo, wall_hi): what one thread computes.
+struct ContactRange {
+  std::int64_t pair_lo = 0, pair_hi = 0, wall_lo = 0, wall_hi = 0;
 };
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
@@ -140,8 +147,10 @@ class World {
   void rebuild_lists();
   void reorder_discs();
   // With `forces`: contact forces, then a from the contact sums; then kick v += a kick and
-  // drift x += v drift. One parallel region: each thread takes its block of discs (balance_).
+  // drift x += v drift. One parallel region: each thread takes its block of discs (blocks_)
+  // and hands the rows that reach the next block to its thread (Handoff).
   void forces_and_motion(bool forces, double kick, double drift);
+  void find_handoff(const std::vector<ContactRange>& range);
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -173,8 +182,26 @@ class World {
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
   LedgerBlocks ledger_blocks_;
-  // Each thread's discs in the force pass and in the sums, kick and drift (load_balance.hpp).
-  LoadBalance contact_blocks_{LoadBalance::Work::contacts}, motion_blocks_{LoadBalance::Work::sums};
+  // Each thread's block of discs for a whole step (load_balance.hpp) and what hands one
+  // block's results to the next (World::forces_and_motion).
+  LoadBalance blocks_{LoadBalance::Work::step};
+  struct Handoff {
+    // Thread t computes the pairs from boundary_pair[t] on first: the rows that touch a later
+    // block's discs. Discs of block t below touched_end[t - 1] wait for them.
+    std::vector<std::int64_t> boundary_pair, touched_end;
+    std::int64_t lists = -1, blocks = -1;  // the versions they were found for
+  } handoff_;
+  std::int64_t lists_version_ = 0;  // counts rebuilds of the lists
+  // Per thread: the last pass whose boundary pairs it has computed. Copies start fresh.
+  struct ReadyFlags {
+    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}; };
+    std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
+    ReadyFlags() = default;
+    ReadyFlags(const ReadyFlags&) : ReadyFlags() {}
+    ReadyFlags& operator=(const ReadyFlags&) { return *this; }
+  } ready_;
+  std::int64_t passes_ = 0;  // force-and-motion passes taken (the flags' values)
+  std::vector<ContactRange> contact_ranges_;  // scratch: each thread's contacts
 };
 
 }  // namespace runout
