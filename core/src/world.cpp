@@ -158,15 +158,23 @@ void World::rebuild_lists() {
   ++profile_.rebuilds;
 }
 
-// Which contacts of each thread's share touch a later block's discs (the boundary ones: with
-// the discs numbered along x, a few rows at the end of the block), and how far they reach.
-void World::find_handoff(const std::vector<ContactRange>& range) {
+// Each thread's contacts for the current lists and blocks, which of them touch a later block's
+// discs (the boundary ones: with the discs numbered along x, a few rows at the end of the
+// block), and from which disc on each block is reached by no earlier thread.
+void World::find_handoff() {
   const std::vector<std::int64_t>& b = blocks_.bounds();
-  const int T = static_cast<int>(range.size());
+  const auto n = static_cast<std::int64_t>(particles_.size());
+  const int T = static_cast<int>(b.size()) - 1;
+  handoff_.range.resize(static_cast<std::size_t>(T));
   handoff_.boundary_pair.assign(static_cast<std::size_t>(T), 0);
-  handoff_.touched_end.assign(static_cast<std::size_t>(T), 0);
+  handoff_.first_free.assign(static_cast<std::size_t>(T), 0);
+  std::int64_t reached = 0;  // the end of the discs the threads before t reach
   for (int t = 0; t < T; ++t) {
-    const ContactRange& r = range[t];
+    const ContactRange r = phases::contact_range(pairs_, wall_contacts_, b[t], b[t + 1], n);
+    handoff_.range[t] = r;
+    // Block t's discs below what earlier threads reach wait for them; windows of lanes whole.
+    constexpr std::int64_t W = DiscRuns::kWindow;
+    handoff_.first_free[t] = std::min(b[t + 1], (std::max(b[t], reached) + W - 1) / W * W);
     std::int64_t first = r.pair_hi, reach = b[t + 1];
     for (std::int64_t q = r.pair_lo; q < r.pair_hi; ++q)
       if (pairs_.j[q] >= b[t + 1]) {  // j > i: a pair whose i is beyond the block crosses too
@@ -178,8 +186,8 @@ void World::find_handoff(const std::vector<ContactRange>& range) {
     for (std::int64_t q = r.wall_lo; q < r.wall_hi; ++q)
       reach = std::max<std::int64_t>(reach, wall_contacts_.disc[q] + 1);
     // A whole ledger block, so the ledger's blocks are each computed in one piece.
-    handoff_.boundary_pair[t] = std::max(r.pair_lo, first / kLedgerBlock * kLedgerBlock);
-    handoff_.touched_end[t] = reach;
+    handoff_.boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / kLedgerBlock * kLedgerBlock));
+    reached = std::max(reached, reach);
   }
   handoff_.lists = lists_version_;
   handoff_.blocks = blocks_.version();
@@ -201,10 +209,11 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   const auto t0 = Clock::now();
   PassSums sums;
   phases::Motion motion;
+  double forces_seconds = 0;  // thread 0's
   const int T = settings_.threads;
   if (T == 1) {
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()));
-    profile_.contact_forces += seconds_since(t0);
+    forces_seconds = seconds_since(t0);
     motion = motion_of(0, n);
   } else {
     // Thread t takes the discs of block t for the whole step: the contacts of their rows, then
@@ -213,33 +222,22 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
     // their rows reach its discs (the handoff), and each thread computes those rows first.
     blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
     const std::vector<std::int64_t>& b = blocks_.bounds();
-    std::vector<ContactRange>& range = contact_ranges_;
-    range.resize(static_cast<std::size_t>(T));
-    for (int t = 0; t < T; ++t) range[t] = phases::contact_range(pairs_, wall_contacts_, b[t], b[t + 1], n);
     if (handoff_.lists != lists_version_ || handoff_.blocks != blocks_.version() ||
-        handoff_.touched_end.size() != static_cast<std::size_t>(T))
-      find_handoff(range);
+        handoff_.range.size() != static_cast<std::size_t>(T))
+      find_handoff();
     const std::int64_t pass = ++passes_;
     PassSums part[kMaxThreads];
     phases::Motion moved[kMaxThreads];
-    double forces_seconds = 0;
     auto share = [&](int t) {
       const auto start = Clock::now();
-      const ContactRange& r = range[t];
-      const std::int64_t split = std::min(handoff_.boundary_pair[t], r.pair_hi);
-      if (forces) {
-        const PassSums a = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
-        ready_.flag[t].pass.store(pass, std::memory_order_release);
-        const PassSums c = contacts(r.pair_lo, split, 0, 0);
-        part[t].worst = std::max(a.worst, c.worst);
-      } else {
-        ready_.flag[t].pass.store(pass, std::memory_order_release);
-      }
+      const ContactRange& r = handoff_.range[t];
+      const std::int64_t split = handoff_.boundary_pair[t];
+      if (forces) part[t] = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+      ready_.flag[t].pass.store(pass, std::memory_order_release);
+      if (forces) part[t].worst = std::max(part[t].worst, contacts(r.pair_lo, split, 0, 0).worst);
       if (t == 0) forces_seconds = seconds_since(start);
       // First the discs no earlier thread's contacts reach, then (once those are done) the rest.
-      std::int64_t mid = b[t];
-      for (int u = 0; u < t; ++u) mid = std::max(mid, handoff_.touched_end[u]);
-      mid = std::min(b[t + 1], (mid + DiscRuns::kWindow - 1) / DiscRuns::kWindow * DiscRuns::kWindow);
+      const std::int64_t mid = handoff_.first_free[t];
       const phases::Motion late = motion_of(mid, b[t + 1]);
       auto busy = seconds_since(start);
       // A short spin (the earlier thread is nearly always done by now), then yielding, so a
@@ -265,7 +263,6 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
       motion = t == 0 ? moved[0] : phases::Motion::merge(motion, moved[t]);
     }
     blocks_.after_step(pairs_, wall_contacts_, runs_);
-    profile_.contact_forces += forces_seconds;
   }
   if (ledger) {
     const PassSums total = ledger_blocks_.total();
@@ -275,7 +272,8 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   }
   list_drift_ = motion.list_drift();
   finite_ = motion.finite;
-  profile_.integrate += seconds_since(t0);
+  profile_.contact_forces += forces_seconds;
+  profile_.integrate += seconds_since(t0) - forces_seconds;
   if (forces) check_overlap(sums.worst);
 }
 

@@ -150,7 +150,7 @@ class World {
   // drift x += v drift. One parallel region: each thread takes its block of discs (blocks_)
   // and hands the rows that reach the next block to its thread (Handoff).
   void forces_and_motion(bool forces, double kick, double drift);
-  void find_handoff(const std::vector<ContactRange>& range);
+  void find_handoff();
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -186,9 +186,10 @@ class World {
   // block's results to the next (World::forces_and_motion).
   LoadBalance blocks_{LoadBalance::Work::step};
   struct Handoff {
-    // Thread t computes the pairs from boundary_pair[t] on first: the rows that touch a later
-    // block's discs. Discs of block t below touched_end[t - 1] wait for them.
-    std::vector<std::int64_t> boundary_pair, touched_end;
+    std::vector<ContactRange> range;  // thread t's contacts
+    // Thread t computes its pairs from boundary_pair[t] on first: the rows that touch a later
+    // block's discs. Its discs below first_free[t] wait for the earlier threads' such rows.
+    std::vector<std::int64_t> boundary_pair, first_free;
     std::int64_t lists = -1, blocks = -1;  // the versions they were found for
   } handoff_;
   std::int64_t lists_version_ = 0;  // counts rebuilds of the lists
@@ -201,7 +202,6 @@ class World {
     ReadyFlags& operator=(const ReadyFlags&) { return *this; }
   } ready_;
   std::int64_t passes_ = 0;  // force-and-motion passes taken (the flags' values)
-  std::vector<ContactRange> contact_ranges_;  // scratch: each thread's contacts
 };
 
 }  // namespace runout
