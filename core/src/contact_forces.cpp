@@ -167,7 +167,7 @@ struct Kernel {
 
 // Runs a kernel over contacts [lo, hi) of `count`, whose ends are block ends (kLedgerBlock).
 // With the ledger, each block's sums go to blocks[b] and are added in block order after every
-// thread is done (merge_ledger), so they are the same bits whatever the thread count and
+// thread is done (LedgerBlocks::total), so they are the same bits whatever the thread count and
 // however the blocks are shared (a resumed run may use another count, SPEC §8).
 template <class Kernel>
 PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
@@ -210,8 +210,7 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               walls.torque.data()};
   const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data());
   const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data());
-  return {std::max(a.worst, b.worst), a.loss_normal + b.loss_normal,
-          a.loss_friction + b.loss_friction, a.loss_rolling + b.loss_rolling};
+  return a + b;
 }
 
 template <class Model, class Source, class Out>
@@ -284,17 +283,10 @@ PassSums LedgerBlocks::total() const {
   // The pairs' sum plus the walls' sum, each added from zero in block order.
   auto sum = [](const std::vector<PassSums>& blocks) {
     PassSums t;
-    for (const PassSums& b : blocks) {
-      t.worst = std::max(t.worst, b.worst);
-      t.loss_normal += b.loss_normal;
-      t.loss_friction += b.loss_friction;
-      t.loss_rolling += b.loss_rolling;
-    }
+    for (const PassSums& b : blocks) t = t + b;
     return t;
   };
-  const PassSums a = sum(pairs), b = sum(walls);
-  return {std::max(a.worst, b.worst), a.loss_normal + b.loss_normal,
-          a.loss_friction + b.loss_friction, a.loss_rolling + b.loss_rolling};
+  return sum(pairs) + sum(walls);
 }
 
 }  // namespace runout

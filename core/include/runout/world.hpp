@@ -62,6 +62,11 @@ struct StepProfile {
 // the ledger, the energy it dissipated (J).
 struct PassSums {
   double worst = 0, loss_normal = 0, loss_friction = 0, loss_rolling = 0;
+  // Two passes' sums together: the larger overlap share, the losses added (a's first).
+  friend PassSums operator+(const PassSums& a, const PassSums& b) {
+    return {std::max(a.worst, b.worst), a.loss_normal + b.loss_normal,
+            a.loss_friction + b.loss_friction, a.loss_rolling + b.loss_rolling};
+  }
 };
 
 // The force pass's ledger sums per fixed block of contacts, added in block order whatever
