@@ -239,50 +239,80 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   }
 
   // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----
-  const size_t np = pairs.i.size();
-  constexpr std::int32_t L = DiscRuns::kSlice;
-  cursor_.assign(static_cast<size_t>(n), 0);
-  for (size_t q = 0; q < np; ++q) ++cursor_[pairs.j[q]];
-  const std::int32_t slices = (n + L - 1) / L;
-  auto run_length = [&](std::int32_t k) { return pairs.row_start[k + 1] - pairs.row_start[k] + cursor_[k]; };
-  // Lanes: each window's discs by run length, longest first (ties by index).
-  constexpr std::int32_t W = DiscRuns::kWindow;
+  // Built in parallel, the layout a function of the lists alone: each thread counts the
+  // incoming pairs of its own rows, so disc k's incoming pairs from thread t's rows (smaller
+  // i) follow those from the threads before it, which is pair order.
+  const auto np = static_cast<std::int32_t>(pairs.i.size());
+  constexpr std::int32_t L = DiscRuns::kSlice, W = DiscRuns::kWindow;
   static_assert(W % L == 0);
+  const std::int32_t slices = (n + L - 1) / L, windows = (n + W - 1) / W;
+  const std::int32_t* row_start = pairs.row_start.data();
   runs.lane_disc.assign(static_cast<size_t>(slices) * L, -1);
+  runs.slice_start.assign(static_cast<size_t>(slices) + 1, 0);
   lane_of_.resize(static_cast<size_t>(n));
-  for (std::int32_t w0 = 0; w0 < n; w0 += W) {
-    std::int32_t* lanes = runs.lane_disc.data() + w0;
-    const std::int32_t count = std::min(W, n - w0);
-    for (std::int32_t m = 0; m < count; ++m) {  // insertion sort: a window is short
-      const std::int32_t k = w0 + m, len = run_length(k);
-      std::int32_t at = m;
-      for (; at > 0 && run_length(lanes[at - 1]) < len; --at) lanes[at] = lanes[at - 1];
-      lanes[at] = k;
+  run_length_.resize(static_cast<size_t>(n));
+  thread_count_.resize(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    const auto [lo, hi] = block(n, t, T);  // this thread's rows
+    auto& from_here = thread_count_[t];  // its rows' pairs per j, then its cursors in j's runs
+    from_here.assign(static_cast<size_t>(n), 0);
+    for (std::int32_t q = row_start[lo]; q < row_start[hi]; ++q) ++from_here[pairs.j[q]];
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::int32_t k = 0; k < n; ++k) {
+      std::int32_t at = row_start[k + 1] - row_start[k];
+      for (int u = 0; u < T; ++u) {
+        const std::int32_t c = thread_count_[u][k];
+        thread_count_[u][k] = at;
+        at += c;
+      }
+      run_length_[k] = at;
     }
-    for (std::int32_t m = 0; m < count; ++m) lane_of_[lanes[m]] = w0 + m;
-  }
-  runs.slice_start.resize(static_cast<size_t>(slices) + 1);
-  runs.slice_start[0] = 0;
-  for (std::int32_t g = 0; g < slices; ++g) {
-    std::int32_t longest = 0;
-    for (std::int32_t l = 0; l < L; ++l)
-      if (const std::int32_t k = runs.lane_disc[g * L + l]; k >= 0) longest = std::max(longest, run_length(k));
-    runs.slice_start[g + 1] = runs.slice_start[g] + L * longest;
-  }
-  // Padding reads the push at [2 np], which the kernel never writes.
-  runs.source.assign(runs.slice_start.back(), static_cast<std::int32_t>(2 * np));
-  auto slot = [&](std::int32_t k, std::int32_t s) {
-    const std::int32_t lane = lane_of_[k];
-    return runs.slice_start[lane / L] + L * s + lane % L;
-  };
-  for (std::int32_t k = 0; k < n; ++k) {
-    for (std::int32_t q = pairs.row_start[k]; q < pairs.row_start[k + 1]; ++q)
-      runs.source[slot(k, q - pairs.row_start[k])] = q;
-    cursor_[k] = pairs.row_start[k + 1] - pairs.row_start[k];  // next free slot of k's run
-  }
-  for (size_t q = 0; q < np; ++q) {
-    const std::int32_t k = pairs.j[q];
-    runs.source[slot(k, cursor_[k]++)] = static_cast<std::int32_t>(np + q);
+    // Lanes: each window's discs by run length, longest first (ties by index); each slice's
+    // length is its longest lane's.
+#pragma omp for schedule(static)
+    for (std::int32_t w = 0; w < windows; ++w) {
+      const std::int32_t w0 = w * W, count = std::min(W, n - w0);
+      std::int32_t* lanes = runs.lane_disc.data() + w0;
+      for (std::int32_t m = 0; m < count; ++m) {  // insertion sort: a window is short
+        const std::int32_t k = w0 + m, len = run_length_[k];
+        std::int32_t at = m;
+        for (; at > 0 && run_length_[lanes[at - 1]] < len; --at) lanes[at] = lanes[at - 1];
+        lanes[at] = k;
+      }
+      for (std::int32_t m = 0; m < count; ++m) lane_of_[lanes[m]] = w0 + m;
+      for (std::int32_t g = w0 / L; g < (w0 + count + L - 1) / L; ++g)
+        runs.slice_start[g + 1] = L * run_length_[runs.lane_disc[g * L]];  // lane 0 is longest
+    }
+#pragma omp single
+    {
+      std::partial_sum(runs.slice_start.begin(), runs.slice_start.end(), runs.slice_start.begin());
+      runs.source.resize(static_cast<size_t>(runs.slice_start.back()));
+    }
+    auto slot = [&](std::int32_t k, std::int32_t s) {
+      const std::int32_t lane = lane_of_[k];
+      return runs.slice_start[lane / L] + L * s + lane % L;
+    };
+    // Each lane's own row, then padding past its run, which reads the push at [2 np] (the
+    // kernel never writes it); the incoming pairs are written by the threads of their rows.
+#pragma omp for schedule(static)
+    for (std::int32_t g = 0; g < slices; ++g) {
+      const std::int32_t longest = (runs.slice_start[g + 1] - runs.slice_start[g]) / L;
+      for (std::int32_t l = 0; l < L; ++l) {
+        const std::int32_t k = runs.lane_disc[g * L + l];
+        std::int32_t* lane = runs.source.data() + runs.slice_start[g] + l;
+        const std::int32_t row = k >= 0 ? row_start[k + 1] - row_start[k] : 0;
+        const std::int32_t end = k >= 0 ? run_length_[k] : 0;
+        for (std::int32_t s = 0; s < row; ++s) lane[L * s] = row_start[k] + s;
+        for (std::int32_t s = end; s < longest; ++s) lane[L * s] = 2 * np;
+      }
+    }
+    for (std::int32_t q = row_start[lo]; q < row_start[hi]; ++q) {
+      const std::int32_t k = pairs.j[q];
+      runs.source[slot(k, from_here[k]++)] = np + q;
+    }
   }
 
   // ---- history and per-step buffers ----

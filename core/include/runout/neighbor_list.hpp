@@ -81,6 +81,7 @@ class NeighborSearch {
   std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
   std::vector<std::int32_t> cursor_;
   std::vector<std::int32_t> lane_of_;  // disc -> its lane (DiscRuns::lane_disc)
+  std::vector<std::int32_t> run_length_;  // disc -> pairs in its run
   PairContacts old_pairs_;
   WallContacts old_walls_;
 };
