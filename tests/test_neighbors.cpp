@@ -3,6 +3,7 @@
 // the thread count (every per-disc sum runs in (i, j) order).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -189,6 +190,73 @@ TEST(Determinism, BitIdenticalAcrossThreadCountsWithFewDiscs) {
   };
   const Particles one = run(1);
   for (int repeat = 0; repeat < 20; ++repeat) expect_identical(one, run(2), "1 vs 2 threads, 3 discs");
+}
+
+// Steps `w` until `until` seconds, checking by brute force over every pair and wall segment
+// that the lists hold every contact whenever a step uses them without a rebuild (SPEC §5,
+// ListDrift). Returns how many steps used lists built at an earlier step.
+std::int64_t check_lists_hold_every_contact(World& w, double until, const char* what) {
+  std::int64_t used = 0;
+  while (w.time() < until) {
+    const Particles& p = w.particles();
+    std::vector<std::pair<std::int32_t, std::int32_t>> touching, walls;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(p.size()); ++i) {
+      for (std::int32_t j = i + 1; j < static_cast<std::int32_t>(p.size()); ++j)
+        if (std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]) < p.radius[i] + p.radius[j]) touching.push_back({i, j});
+      for (std::int32_t g = 0; g < static_cast<std::int32_t>(w.segments().size()); ++g) {
+        const Segment& seg = w.segments()[g];
+        const WallTouch t = wall_touch(seg, {p.x[i], p.y[i]}, p.radius[i]);
+        if (seg.active && t.acts && t.gap < p.radius[i]) walls.push_back({i, g});
+      }
+    }
+    const PairContacts pairs = w.pairs();
+    const WallContacts wall_lists = w.wall_contacts();
+    const std::int64_t rebuilds = w.profile().rebuilds;
+    w.step();
+    if (w.profile().rebuilds != rebuilds) continue;  // the step built new lists first
+    ++used;
+    for (const auto& [i, j] : touching) {
+      const auto row = pairs.j.begin() + pairs.row_start[i], end = pairs.j.begin() + pairs.row_start[i + 1];
+      if (!std::binary_search(row, end, j))
+        ADD_FAILURE() << what << ": pair " << i << "-" << j << " unlisted at step " << w.step_count();
+    }
+    for (const auto& [i, g] : walls) {
+      const auto row = wall_lists.segment.begin() + wall_lists.row_start[i];
+      const auto end = wall_lists.segment.begin() + wall_lists.row_start[i + 1];
+      if (std::find(row, end, g) == end)
+        ADD_FAILURE() << what << ": disc " << i << ", segment " << g << " unlisted at step " << w.step_count();
+    }
+    if (::testing::Test::HasFailure()) break;
+  }
+  return used;
+}
+
+TEST(NeighborLists, HoldEveryContactOfAFlow) {
+  for (double skin : {0.05, 0.3}) {
+    SceneDef s = testing::small_pile();
+    s.integration.skin = skin;
+    const SceneSetup setup = derive_setup(s);
+    World w = build_settled_pile(s, setup, 1);
+    release(w, setup);
+    EXPECT_GT(check_lists_hold_every_contact(w, 3.0 * setup.unit_time, skin < 0.1 ? "skin 0.05" : "skin 0.3"), 100);
+  }
+}
+
+// A lone disc slides over the floor's joint into the end wall, and another flies into it: only
+// the walls' margins can call the rebuilds (a lone disc's spread is zero).
+TEST(NeighborLists, HoldEveryWallContactOfALoneDisc) {
+  for (const ParticleDef& lone : {testing::disc(5.0, 0.25, 0.5, 0, -3.0), testing::disc(-2.0, 0.25, 0.5, 0, 3.0),
+                                  testing::disc(6.0, 3.0, 0.5, 0, 4.0, 1.0)}) {
+    SceneDef s;
+    s.species = {{"disc", 0.5, 0.0, 0.0}};
+    s.walls = {WallDef{"floor", {{-10.0, 0.0}, {0.0, 0.0}, {10.0, 0.0}}, true, WallInside::left},
+               WallDef{"end", {{10.0, 0.0}, {10.0, 6.0}}, false, WallInside::both}};
+    s.particles = {lone};
+    const SceneSetup setup = derive_setup(s);
+    World w = build_explicit_world(s, setup, 1);
+    EXPECT_GT(check_lists_hold_every_contact(w, 2.5, "lone disc"), 100);
+    EXPECT_GT(w.profile().rebuilds, 2);
+  }
 }
 
 TEST(Determinism, BitIdenticalAcrossSkins) {

@@ -105,9 +105,10 @@ Motion Motion::merge(const Motion& a, const Motion& b) {
           std::max(a.max_displacement2, b.max_displacement2), a.finite && b.finite};
 }
 
-double Motion::list_drift() const {
-  if (!(ux_lo <= ux_hi)) return finite ? 0.0 : std::numeric_limits<double>::infinity();
-  return std::max(std::hypot(ux_hi - ux_lo, uy_hi - uy_lo), std::sqrt(max_displacement2));
+double Motion::spread() const {
+  if (!finite) return std::numeric_limits<double>::infinity();
+  if (!(ux_lo <= ux_hi)) return 0.0;
+  return std::hypot(ux_hi - ux_lo, uy_hi - uy_lo);
 }
 
 Motion advance(const StepContext& step, Particles& p, const PairContacts& c,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "runout/errors.hpp"
@@ -209,6 +210,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
                   segments[s].one_sided() ? segments[s].behind_reach : 0.0, len > 0};
     }
     thread_walls_.resize(threads);
+    wall_margin_.resize(static_cast<std::size_t>(n));
 #pragma omp parallel num_threads(threads)
     {
       const int t = omp_get_thread_num();
@@ -218,15 +220,28 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       for (std::int32_t k = lo; k < hi; ++k) {
         const Eigen::Vector2d c(p.x[k], p.y[k]);
         const double r = p.radius[k];
+        double margin = std::numeric_limits<double>::infinity();
         for (std::int32_t s = 0; s < ns; ++s) {
+          if (!segments[s].active) continue;
           const Line& l = lines[s];
           const double reach = std::max(r + skin, l.behind_reach * (behind_depth(r) + skin));
-          const bool far = l.usable && std::abs(l.nx * c.x() + l.ny * c.y() - l.offset) > reach * (1 + 1e-9) + 1e-12;
-          if (!far && segments[s].active && wall_candidate(segments[s], c, r, skin)) {
+          const double line_distance = std::abs(l.nx * c.x() + l.ny * c.y() - l.offset);
+          const bool far = l.usable && line_distance > reach * (1 + 1e-9) + 1e-12;
+          if (!far && wall_candidate(segments[s], c, r, skin)) {
             out.push_back(s);
             ++walls.row_start[k + 1];
+            continue;
           }
+          // Unlisted: a contact needs the centre within r of the segment, or within
+          // behind_reach * behind_depth(r) behind a one-sided face, so moving less than the
+          // distance beyond that (the line's distance when far; with a rounding margin)
+          // touches nothing; the skin always holds (wall_candidate).
+          const double touch = std::max(r, l.behind_reach * behind_depth(r));
+          const double distance = far ? line_distance : std::sqrt(squared_distance_to(segments[s], c));
+          const double beyond = (distance - touch) * (1 - 1e-9) - 1e-12;
+          margin = std::min(margin, std::max(skin, beyond));
         }
+        wall_margin_[k] = margin;
       }
     }
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());

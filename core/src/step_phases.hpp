@@ -2,6 +2,7 @@
 // World::step (world.cpp) calls them in order; each lives in its own file.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -47,9 +48,10 @@ struct Motion {
   bool finite = true;
 
   static Motion merge(const Motion& a, const Motion& b);
-  // An upper bound on how much closer any two discs, or a disc and a wall, have come since
-  // the rebuild: the box's diagonal bounds |u_i - u_j| for every pair, and a wall is fixed.
-  double list_drift() const;
+  // The box's diagonal: it bounds |u_i - u_j| for every pair (infinite once not finite).
+  double spread() const;
+  // The largest displacement: how much closer a disc came to a fixed wall.
+  double largest() const { return std::sqrt(max_displacement2); }
 };
 Motion advance(const StepContext& step, Particles& p, const PairContacts& pairs,
                const WallContacts& walls, const DiscRuns& runs, const std::vector<double>& x0,

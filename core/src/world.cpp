@@ -150,6 +150,11 @@ void World::rebuild_lists() {
   x_at_rebuild_ = particles_.x;
   y_at_rebuild_ = particles_.y;
   radius_at_rebuild_ = particles_.radius;
+  // Groups whose centres are farther apart than two of the largest discs and kFarSkins skins
+  // reach each other only once the whole flow's spread has grown by that much (ListDrift).
+  constexpr double kFarSkins = 4;
+  const double rmax = particles_.size() ? *std::max_element(particles_.radius.begin(), particles_.radius.end()) : 0.0;
+  drift_.rebuilt(2 * rmax + kFarSkins * settings_.skin, (kFarSkins - 1) * settings_.skin, settings_.skin);
   list_drift_ = 0;
   max_growth_ = 0;
   lists_valid_ = true;
@@ -270,7 +275,13 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
     ledger_.friction += total.loss_friction;
     ledger_.rolling += total.loss_rolling;
   }
-  list_drift_ = motion.list_drift();
+  // The whole flow's bound (the spread of all displacements for pairs, the largest one for
+  // walls) is cheap; once it is spent, the groups' bound (ListDrift) often is not. It assumes
+  // fixed radii, so not while discs grow.
+  list_drift_ = std::max(motion.spread(), motion.largest());
+  if (list_drift_ + 2 * max_growth_ >= settings_.skin && max_growth_ == 0)
+    list_drift_ = drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
+                                 search_.wall_margin(), motion.spread());
   finite_ = motion.finite;
   profile_.contact_forces += forces_seconds;
   profile_.integrate += seconds_since(t0) - forces_seconds;

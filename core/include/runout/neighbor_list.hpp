@@ -73,8 +73,12 @@ class NeighborSearch {
   void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
                int threads, int history_width, PairContacts& pairs, WallContacts& walls,
                DiscRuns& runs);
+  // Per disc, from the last rebuild: how far it can move before it could touch an active wall
+  // segment it is not listed with (at least the skin; infinite without walls). ListDrift.
+  const std::vector<double>& wall_margin() const { return wall_margin_; }
 
  private:
+  std::vector<double> wall_margin_;
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
   std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged

@@ -18,6 +18,7 @@
 
 #include "runout/contact/registry.hpp"
 #include "runout/derive.hpp"
+#include "runout/list_drift.hpp"
 #include "runout/load_balance.hpp"
 #include "runout/neighbor_list.hpp"
 #include "runout/particles.hpp"
@@ -181,6 +182,7 @@ class World {
   // Verlet-list validity (SPEC §5): see World::step.
   std::vector<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
   double list_drift_ = 0;  // bound on how much closer any two bodies came since the rebuild (m)
+  ListDrift drift_;         // judges list_drift_ window by window
   double max_growth_ = 0;
   bool lists_valid_ = false;
   double guard_radius_scale_ = 1.0;

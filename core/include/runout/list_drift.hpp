@@ -1,0 +1,48 @@
+// When the neighbour lists go stale (SPEC §5), judged group by group once the whole flow's
+// bound is spent. The lists hold every pair closer than the skin at the rebuild, so an unlisted
+// pair touches only once its two discs have come closer by the skin (less their growth). The
+// displacements since the rebuild bound that: for two discs of one group of kGroup consecutive
+// discs, or of two groups close to each other, by the spread of those groups' displacements;
+// for discs of groups farther apart (by `far_slack` beyond the skin), by the spread of all of
+// them; for a disc and a wall it is not listed with, by the disc's displacement less how much
+// farther than the skin the wall was (NeighborSearch::wall_margin). A flow that shears then
+// does not stale its lists in one place because another place moves differently, nor because
+// the flow slides along the bed; the discs are numbered along the flow
+// (World::reorder_discs), so a group is compact.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace runout {
+
+class ListDrift {
+ public:
+  static constexpr std::size_t kGroup = 32;  // discs
+
+  // At a rebuild: groups whose centres are within `near` are near each other (so other groups'
+  // discs were at least `far_slack` beyond the skin apart). The groups are found when first
+  // needed.
+  void rebuilt(double near, double far_slack, double skin);
+  // A bound, to hold against the skin, on how much closer two unlisted bodies came since the
+  // rebuild, from the centres now (x, y) and at the rebuild (x0, y0), each disc's wall margin
+  // at the rebuild, and the spread of all displacements (the diagonal of their box).
+  double closing(const std::vector<double>& x, const std::vector<double>& y,
+                 const std::vector<double>& x0, const std::vector<double>& y0,
+                 const std::vector<double>& wall_margin, double all_spread);
+
+ private:
+  void find_groups(const std::vector<double>& x0, const std::vector<double>& y0,
+                   const std::vector<double>& wall_margin);
+
+  double reach_ = 0, far_slack_ = 0, skin_ = 0;
+  bool found_ = false;
+  std::vector<double> box_;                      // 4 per group: centres, then displacements
+  std::vector<double> largest2_;                 // per group: its largest |u|^2
+  std::vector<double> wall_slack_;               // per group: its smallest wall margin less the skin
+  std::vector<std::pair<std::int32_t, std::int32_t>> near_;  // pairs of groups near each other
+  std::vector<std::int32_t> by_x_;
+};
+
+}  // namespace runout

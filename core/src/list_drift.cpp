@@ -1,0 +1,95 @@
+#include "runout/list_drift.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace runout {
+
+void ListDrift::rebuilt(double near, double far_slack, double skin) {
+  reach_ = near;
+  far_slack_ = far_slack;
+  skin_ = skin;
+  found_ = false;
+}
+
+void ListDrift::find_groups(const std::vector<double>& x0, const std::vector<double>& y0,
+                            const std::vector<double>& wall_margin) {
+  const std::size_t n = x0.size(), groups = (n + kGroup - 1) / kGroup;
+  box_.resize(4 * groups);
+  largest2_.resize(groups);
+  wall_slack_.resize(groups);
+  // Each group's box of centres at the rebuild, then the groups near it by a sweep along x.
+  for (std::size_t g = 0; g < groups; ++g) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    double x_lo = inf, x_hi = -inf, y_lo = inf, y_hi = -inf, margin = inf;
+    const std::size_t end = std::min(n, (g + 1) * kGroup);
+#pragma omp simd reduction(min : x_lo, y_lo, margin) reduction(max : x_hi, y_hi)
+    for (std::size_t k = g * kGroup; k < end; ++k) {
+      x_lo = std::min(x_lo, x0[k]); x_hi = std::max(x_hi, x0[k]);
+      y_lo = std::min(y_lo, y0[k]); y_hi = std::max(y_hi, y0[k]);
+      margin = std::min(margin, wall_margin[k]);
+    }
+    box_[4 * g] = x_lo; box_[4 * g + 1] = x_hi; box_[4 * g + 2] = y_lo; box_[4 * g + 3] = y_hi;
+    wall_slack_[g] = margin - skin_;
+  }
+  const double* b = box_.data();
+  by_x_.resize(groups);
+  std::iota(by_x_.begin(), by_x_.end(), 0);
+  std::sort(by_x_.begin(), by_x_.end(), [&](std::int32_t u, std::int32_t v) { return b[4 * u] < b[4 * v]; });
+  near_.clear();
+  for (std::size_t s = 0; s < groups; ++s) {
+    const std::int32_t a = by_x_[s];
+    for (std::size_t t = s + 1; t < groups && b[4 * by_x_[t]] < b[4 * a + 1] + reach_; ++t) {
+      const std::int32_t c = by_x_[t];
+      const double gx = std::max(0.0, b[4 * c] - b[4 * a + 1]);
+      const double gy = std::max({0.0, b[4 * c + 2] - b[4 * a + 3], b[4 * a + 2] - b[4 * c + 3]});
+      if (gx * gx + gy * gy < reach_ * reach_) near_.push_back({a, c});
+    }
+  }
+  found_ = true;
+}
+
+double ListDrift::closing(const std::vector<double>& x, const std::vector<double>& y,
+                          const std::vector<double>& x0, const std::vector<double>& y0,
+                          const std::vector<double>& wall_margin, double all_spread) {
+  // A spread that is not finite (a state gone bad) must not read as fresh lists.
+  if (!(all_spread <= std::numeric_limits<double>::max())) return std::numeric_limits<double>::infinity();
+  if (!found_) find_groups(x0, y0, wall_margin);
+  const std::size_t n = x.size(), groups = largest2_.size();
+  const double* __restrict xs = x.data();
+  const double* __restrict ys = y.data();
+  const double* __restrict xs0 = x0.data();
+  const double* __restrict ys0 = y0.data();
+  // Each group's box of displacements now.
+  for (std::size_t g = 0; g < groups; ++g) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    double ux_lo = inf, ux_hi = -inf, uy_lo = inf, uy_hi = -inf, u2 = 0;
+    const std::size_t end = std::min(n, (g + 1) * kGroup);
+#pragma omp simd reduction(min : ux_lo, uy_lo) reduction(max : ux_hi, uy_hi, u2)
+    for (std::size_t k = g * kGroup; k < end; ++k) {
+      const double ux = xs[k] - xs0[k], uy = ys[k] - ys0[k];
+      ux_lo = std::min(ux_lo, ux); ux_hi = std::max(ux_hi, ux);
+      uy_lo = std::min(uy_lo, uy); uy_hi = std::max(uy_hi, uy);
+      u2 = std::max(u2, ux * ux + uy * uy);
+    }
+    box_[4 * g] = ux_lo; box_[4 * g + 1] = ux_hi; box_[4 * g + 2] = uy_lo; box_[4 * g + 3] = uy_hi;
+    largest2_[g] = u2;
+  }
+  const double* b = box_.data();
+  auto spread2 = [&](std::size_t a, std::size_t c) {
+    const double dx = std::max(b[4 * a + 1], b[4 * c + 1]) - std::min(b[4 * a], b[4 * c]);
+    const double dy = std::max(b[4 * a + 3], b[4 * c + 3]) - std::min(b[4 * a + 2], b[4 * c + 2]);
+    return dx * dx + dy * dy;
+  };
+  double pairs2 = 0, walls = 0;
+  for (std::size_t a = 0; a < groups; ++a) {
+    pairs2 = std::max(pairs2, spread2(a, a));
+    walls = std::max(walls, std::sqrt(largest2_[a]) - wall_slack_[a]);
+  }
+  for (const auto& [a, c] : near_) pairs2 = std::max(pairs2, spread2(a, c));
+  return std::max({std::sqrt(pairs2), all_spread - far_slack_, walls});
+}
+
+}  // namespace runout
