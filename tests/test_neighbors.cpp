@@ -20,7 +20,10 @@ Particles random_discs(int n, double box, double r_small, double r_large, std::u
   std::uniform_real_distribution<double> u(0.0, box), coin(0.0, 1.0);
   Particles p;
   for (int k = 0; k < n; ++k) {
-    const double r = coin(rng) < 0.3 ? r_large : r_small * (0.9 + 0.2 * coin(rng));
+    // r_small < 0: radii spread evenly over [r_large / 5, r_large] (fine and coarse mixed).
+    const double r = r_small < 0           ? r_large * (0.2 + 0.8 * coin(rng))
+                     : coin(rng) < 0.3     ? r_large
+                                           : r_small * (0.9 + 0.2 * coin(rng));
     p.add(k, 0, u(rng), u(rng), r, 1.0, 1.0);
   }
   return p;
@@ -28,8 +31,8 @@ Particles random_discs(int n, double box, double r_small, double r_large, std::u
 
 TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    for (double ratio : {1.0, 4.0, 8.33}) {
-      const Particles p = random_discs(1500, 30.0, 0.5 / ratio, 0.5, seed);
+    for (double ratio : {1.0, 4.0, 8.33, 0.0}) {  // 0: a continuous spread of radii
+      const Particles p = random_discs(1500, 30.0, ratio > 0 ? 0.5 / ratio : -1.0, 0.5, seed);
       const double skin = 0.05;
       const std::vector<Segment> walls = make_segments({{"w", {{0.0, 0.0}, {30.0, 5.0}, {30.0, 30.0}}, true}});
       for (int threads : {1, 2}) {

@@ -97,15 +97,27 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     }
     std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
     cell_disc_.resize(n);
+    disc_place_.resize(n);
     cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::int32_t k = 0; k < n; ++k) cell_disc_[cursor_[disc_cell_[k]]++] = k;
+    for (std::int32_t k = 0; k < n; ++k) {
+      disc_place_[k] = cursor_[disc_cell_[k]]++;
+      cell_disc_[disc_place_[k]] = k;
+    }
 
     // ---- disc pairs ----
-    // Each pair is found once, from its larger disc (equal radii: from the lower index), which
-    // searches the cells within its own diameter plus the skin: a small disc no longer scans
-    // the wide stencil a large neighbour needs (D/d = 8: a fifth of the candidates). The pairs
-    // are then put in the rows of their lower index, each row sorted by j, so the list is the
-    // same as a search from every i would give, whatever the thread count.
+    // Each pair is found once. Discs up to 1.5 times the smallest radius (the fine ones: the
+    // small species with its spread) find their fine neighbours with a half stencil: all reach
+    // as far as the largest fine disc, so of two fine discs the one earlier in the grid's order
+    // has the other in its stencil and finds the pair, and scans only the grid after its own
+    // place. A pair with a larger disc is found from the larger one (equal radii: the earlier),
+    // which searches the cells within its own diameter plus the skin: a small disc does not
+    // scan the wide stencil a large neighbour needs (D/d = 8: a fifth of the candidates). The
+    // pairs are then put in the rows of their lower index, each row sorted by j, so the list is
+    // the same as a search from every i would give, whatever the thread count.
+    const double fine_limit = 1.5 * rmin;
+    double fine_radius = rmin;  // the largest fine radius
+    for (std::int32_t k = 0; k < n; ++k)
+      if (p.radius[k] <= fine_limit) fine_radius = std::max(fine_radius, p.radius[k]);
     thread_j_.resize(threads);
 #pragma omp parallel num_threads(threads)
     {
@@ -121,11 +133,16 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       };
       for (std::int32_t a = lo; a < hi; ++a) {
         const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
-        const double reach = 2 * ra + skin;
+        const bool fine = ra <= fine_limit, coarse = !fine;
+        const double reach = 2 * (fine ? fine_radius : ra) + skin;
+        const std::int32_t place = disc_place_[a];
         const std::int32_t gx0 = cell_of(xa - reach, xmin, ncx), gx1 = cell_of(xa + reach, xmin, ncx);
-        const std::int32_t gy0 = cell_of(ya - reach, ymin, ncy), gy1 = cell_of(ya + reach, ymin, ncy);
+        const std::int32_t gy_own = disc_cell_[a] / ncx;
+        const std::int32_t gy0 = fine ? gy_own : cell_of(ya - reach, ymin, ncy);
+        const std::int32_t gy1 = cell_of(ya + reach, ymin, ncy);
         for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
-          const std::int32_t q_begin = cell_start_[gy * ncx + gx0];
+          std::int32_t q_begin = cell_start_[gy * ncx + gx0];
+          if (fine && gy == gy_own) q_begin = std::max(q_begin, std::min(place + 1, cell_start_[gy * ncx + gx1 + 1]));
           const std::int32_t q_end = cell_start_[gy * ncx + gx1 + 1];
           if (out.size() < found + 2 * static_cast<std::size_t>(q_end - q_begin))
             out.resize(2 * out.size() + 2 * static_cast<std::size_t>(q_end - q_begin));
@@ -135,8 +152,10 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
           for (std::int32_t q = q_begin; q < q_end; ++q) {
             const std::int32_t b = cell_disc_[q];
             const double rb = p.radius[b];
-            // Bitwise, so no branch (a bidisperse pile would mispredict it half the time).
-            const bool from_here = (rb < ra) | ((rb == ra) & (b > a));  // else found from b
+            // Bitwise, so no branch (a bidisperse pile would mispredict it half the time); a
+            // fine disc scans only places after its own.
+            const bool from_here = (fine & (rb <= fine_limit)) |
+                                   (coarse & ((rb < ra) | ((rb == ra) & (q > place))));  // else from b
             const double dx = p.x[b] - xa, dy = p.y[b] - ya;
             const double cut = ra + rb + skin;
             next[0] = std::min(a, b);

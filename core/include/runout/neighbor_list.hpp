@@ -81,6 +81,7 @@ class NeighborSearch {
   std::vector<double> wall_margin_;
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
+  std::vector<std::int32_t> disc_place_;  // disc -> its index in cell_disc_ (the grid's order)
   std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged
   std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
   std::vector<std::int32_t> cursor_;
