@@ -306,16 +306,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     }
     // Lanes: each window's discs by run length, longest first (ties by index); each slice's
     // length is its longest lane's.
+    std::vector<std::int32_t> by_length;  // a counting sort's buckets, longest first
 #pragma omp for schedule(static)
     for (std::int32_t w = 0; w < windows; ++w) {
       const std::int32_t w0 = w * W, count = std::min(W, n - w0);
       std::int32_t* lanes = runs.lane_disc.data() + w0;
-      for (std::int32_t m = 0; m < count; ++m) {  // insertion sort: a window is short
-        const std::int32_t k = w0 + m, len = run_length_[k];
-        std::int32_t at = m;
-        for (; at > 0 && run_length_[lanes[at - 1]] < len; --at) lanes[at] = lanes[at - 1];
-        lanes[at] = k;
-      }
+      std::int32_t longest = 0;
+      for (std::int32_t k = w0; k < w0 + count; ++k) longest = std::max(longest, run_length_[k]);
+      by_length.assign(static_cast<std::size_t>(longest) + 2, 0);
+      for (std::int32_t k = w0; k < w0 + count; ++k) ++by_length[longest - run_length_[k] + 1];
+      std::partial_sum(by_length.begin(), by_length.end(), by_length.begin());
+      for (std::int32_t k = w0; k < w0 + count; ++k) lanes[by_length[longest - run_length_[k]]++] = k;
       for (std::int32_t m = 0; m < count; ++m) lane_of_[lanes[m]] = w0 + m;
       for (std::int32_t g = w0 / L; g < (w0 + count + L - 1) / L; ++g)
         runs.slice_start[g + 1] = L * run_length_[runs.lane_disc[g * L]];  // lane 0 is longest
