@@ -252,12 +252,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
             continue;
           }
           // Unlisted: a contact needs the centre within r of the segment, or within
-          // behind_reach * behind_depth(r) behind a one-sided face, so moving less than the
-          // distance beyond that (the line's distance when far; with a rounding margin)
-          // touches nothing; the skin always holds (wall_candidate).
-          const double touch = std::max(r, l.behind_reach * behind_depth(r));
-          const double distance = far ? line_distance : std::sqrt(squared_distance_to(segments[s], c));
-          const double beyond = (distance - touch) * (1 - 1e-9) - 1e-12;
+          // behind_reach * behind_depth(r) behind a one-sided face. A centre on the inside of
+          // a one-sided face touches it only within r, or once behind its line (its line
+          // distance away). Moving less than that (the line's distance stands for the
+          // segment's when far; with a rounding margin) touches nothing; the skin always holds
+          // (wall_candidate).
+          const Segment& seg = segments[s];
+          const double distance = far ? line_distance : std::sqrt(squared_distance_to(seg, c));
+          const double inside = seg.one_sided() ? seg.inside.dot(c - seg.a) : 0.0;
+          const double clear = inside > 0 ? std::min(distance - r, inside)
+                                          : distance - std::max(r, l.behind_reach * behind_depth(r));
+          const double beyond = clear * (1 - 1e-9) - 1e-12;
           margin = std::min(margin, std::max(skin, beyond));
         }
         wall_margin_[k] = margin;
