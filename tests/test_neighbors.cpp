@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <string>
 
 #include "runout/neighbor_list.hpp"
 #include "runout/setup.hpp"
@@ -234,15 +235,39 @@ std::int64_t check_lists_hold_every_contact(World& w, double until, const char* 
   return used;
 }
 
+// At 2 threads each thread measures its own groups' displacements (World::forces_and_motion).
 TEST(NeighborLists, HoldEveryContactOfAFlow) {
-  for (double skin : {0.05, 0.3}) {
-    SceneDef s = testing::small_pile();
-    s.integration.skin = skin;
-    const SceneSetup setup = derive_setup(s);
-    World w = build_settled_pile(s, setup, 1);
+  for (int threads : {1, 2})
+    for (double skin : {0.05, 0.3}) {
+      SceneDef s = testing::small_pile();
+      s.integration.skin = skin;
+      const SceneSetup setup = derive_setup(s);
+      World w = build_settled_pile(s, setup, threads);
+      release(w, setup);
+      const std::string what = "skin " + std::to_string(skin) + ", threads " + std::to_string(threads);
+      EXPECT_GT(check_lists_hold_every_contact(w, 3.0 * setup.unit_time, what.c_str()), 100);
+    }
+}
+
+// The lists' test gives the same answer whoever measures which discs: the same rebuilds at 1
+// and 2 threads (at 2 each thread measures its own groups once the whole flow's bound is spent).
+TEST(NeighborLists, RebuildAtTheSameStepsAtOneAndTwoThreads) {
+  SceneDef s = testing::small_pile();
+  s.avalanche = testing::short_avalanche(12.0, 8.0, 30.0, 40.0, 150);  // a few hundred discs
+  const SceneSetup setup = derive_setup(s);
+  std::vector<std::int64_t> rebuilt_at[2];
+  for (int threads : {1, 2}) {
+    World w = build_settled_pile(s, setup, threads);
     release(w, setup);
-    EXPECT_GT(check_lists_hold_every_contact(w, 3.0 * setup.unit_time, skin < 0.1 ? "skin 0.05" : "skin 0.3"), 100);
+    std::int64_t rebuilds = w.profile().rebuilds;
+    while (w.time() < 3.0 * setup.unit_time) {
+      w.step();
+      if (w.profile().rebuilds != rebuilds) rebuilt_at[threads - 1].push_back(w.step_count());
+      rebuilds = w.profile().rebuilds;
+    }
   }
+  EXPECT_GT(rebuilt_at[0].size(), 10u);
+  EXPECT_EQ(rebuilt_at[0], rebuilt_at[1]);
 }
 
 // A lone disc slides over the floor's joint into the end wall, and another flies into it: only

@@ -51,22 +51,17 @@ void ListDrift::find_groups(const std::vector<double>& x0, const std::vector<dou
   found_ = true;
 }
 
-double ListDrift::closing(const std::vector<double>& x, const std::vector<double>& y,
-                          const std::vector<double>& x0, const std::vector<double>& y0,
-                          const std::vector<double>& wall_margin, double all_spread) {
-  // A spread that is not finite (a state gone bad) must not read as fresh lists.
-  if (!(all_spread <= std::numeric_limits<double>::max())) return std::numeric_limits<double>::infinity();
-  if (!found_) find_groups(x0, y0, wall_margin);
-  const std::size_t n = x.size(), groups = largest2_.size();
+void ListDrift::measure(const std::vector<double>& x, const std::vector<double>& y,
+                        const std::vector<double>& x0, const std::vector<double>& y0,
+                        std::size_t lo, std::size_t hi) {
   const double* __restrict xs = x.data();
   const double* __restrict ys = y.data();
   const double* __restrict xs0 = x0.data();
   const double* __restrict ys0 = y0.data();
-  // Each group's box of displacements now.
-  for (std::size_t g = 0; g < groups; ++g) {
+  for (std::size_t g = lo / kGroup; g * kGroup < hi; ++g) {
     constexpr double inf = std::numeric_limits<double>::infinity();
     double ux_lo = inf, ux_hi = -inf, uy_lo = inf, uy_hi = -inf, u2 = 0;
-    const std::size_t end = std::min(n, (g + 1) * kGroup);
+    const std::size_t end = std::min(hi, (g + 1) * kGroup);
 #pragma omp simd reduction(min : ux_lo, uy_lo) reduction(max : ux_hi, uy_hi, u2)
     for (std::size_t k = g * kGroup; k < end; ++k) {
       const double ux = xs[k] - xs0[k], uy = ys[k] - ys0[k];
@@ -77,6 +72,20 @@ double ListDrift::closing(const std::vector<double>& x, const std::vector<double
     box_[4 * g] = ux_lo; box_[4 * g + 1] = ux_hi; box_[4 * g + 2] = uy_lo; box_[4 * g + 3] = uy_hi;
     largest2_[g] = u2;
   }
+}
+
+double ListDrift::closing(const std::vector<double>& x, const std::vector<double>& y,
+                          const std::vector<double>& x0, const std::vector<double>& y0,
+                          const std::vector<double>& wall_margin, double all_spread) {
+  if (!found_) find_groups(x0, y0, wall_margin);
+  measure(x, y, x0, y0, 0, x.size());
+  return bound(all_spread);
+}
+
+double ListDrift::bound(double all_spread) const {
+  // A spread that is not finite (a state gone bad) must not read as fresh lists.
+  if (!(all_spread <= std::numeric_limits<double>::max())) return std::numeric_limits<double>::infinity();
+  const std::size_t groups = largest2_.size();
   const double* b = box_.data();
   auto spread2 = [&](std::size_t a, std::size_t c) {
     const double dx = std::max(b[4 * a + 1], b[4 * c + 1]) - std::min(b[4 * a], b[4 * c]);

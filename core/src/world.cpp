@@ -156,6 +156,7 @@ void World::rebuild_lists() {
   const double rmax = particles_.size() ? *std::max_element(particles_.radius.begin(), particles_.radius.end()) : 0.0;
   drift_.rebuilt(2 * rmax + kFarSkins * settings_.skin, (kFarSkins - 1) * settings_.skin, settings_.skin);
   list_drift_ = 0;
+  watch_groups_ = false;
   max_growth_ = 0;
   lists_valid_ = true;
   ++lists_version_;
@@ -216,6 +217,7 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   phases::Motion motion;
   double forces_seconds = 0;  // thread 0's
   const int T = settings_.threads;
+  bool watched = false;  // the groups' displacements were measured in the step's region
   if (T == 1) {
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()));
     forces_seconds = seconds_since(t0);
@@ -231,6 +233,10 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
         handoff_.range.size() != static_cast<std::size_t>(T))
       find_handoff();
     const std::int64_t pass = ++passes_;
+    // Once the whole flow's bound is spent, each thread measures its own groups' displacements
+    // for the groups' bound (ListDrift; a block is whole groups).
+    static_assert(DiscRuns::kWindow % ListDrift::kGroup == 0);
+    watched = watch_groups_ && drift_.found();
     PassSums part[kMaxThreads];
     phases::Motion moved[kMaxThreads];
     // Each thread's time is counted from the region's start, so the balancer also weighs how
@@ -257,6 +263,9 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
           if (spins > 4096) std::this_thread::yield();
       const auto resumed = Clock::now();
       moved[t] = phases::Motion::merge(motion_of(b[t], mid), late);
+      if (watched)
+        drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
+                       static_cast<std::size_t>(b[t]), static_cast<std::size_t>(b[t + 1]));
       blocks_.record(t, busy + seconds_since(resumed));
     };
 #pragma omp parallel num_threads(T)
@@ -284,9 +293,12 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   // walls) is cheap; once it is spent, the groups' bound (ListDrift) often is not. It assumes
   // fixed radii, so not while discs grow.
   list_drift_ = std::max(motion.spread(), motion.largest());
-  if (list_drift_ + 2 * max_growth_ >= settings_.skin && max_growth_ == 0)
-    list_drift_ = drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
-                                 search_.wall_margin(), motion.spread());
+  const bool spent = list_drift_ + 2 * max_growth_ >= settings_.skin && max_growth_ == 0;
+  if (spent)
+    list_drift_ = watched ? drift_.bound(motion.spread())
+                          : drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
+                                           search_.wall_margin(), motion.spread());
+  watch_groups_ = spent;
   finite_ = motion.finite;
   profile_.contact_forces += forces_seconds;
   profile_.integrate += seconds_since(t0) - forces_seconds;

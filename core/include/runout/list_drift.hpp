@@ -31,6 +31,14 @@ class ListDrift {
   double closing(const std::vector<double>& x, const std::vector<double>& y,
                  const std::vector<double>& x0, const std::vector<double>& y0,
                  const std::vector<double>& wall_margin, double all_spread);
+  // The same in two parts, so threads can measure their own discs side by side: once the
+  // groups are found (since the last `closing`, no rebuild), each group's box of
+  // displacements for the discs [lo, hi) (lo starts a group), then the bound from them all.
+  bool found() const { return found_; }
+  void measure(const std::vector<double>& x, const std::vector<double>& y,
+               const std::vector<double>& x0, const std::vector<double>& y0, std::size_t lo,
+               std::size_t hi);
+  double bound(double all_spread) const;
 
  private:
   void find_groups(const std::vector<double>& x0, const std::vector<double>& y0,
