@@ -20,8 +20,12 @@ namespace {
 // spins they ran 16 M each, and alone 95.7 M against 95.2 M (docs/performance.md). libgomp
 // reads the setting when it loads, before main, so runout sets it and starts itself once more,
 // unless the user chose the spins or a wait policy. If that start fails, it goes on as it is.
+// Nor where the user binds threads: libgomp has then already pinned this first thread to the
+// first place, the new start would inherit that one CPU as its whole mask, and every thread
+// would run on it (OMP_PROC_BIND=spread gave two threads on CPU 0 and half the speed).
 void prefer_short_openmp_spins(char** argv) {
-  if (std::getenv("GOMP_SPINCOUNT") || std::getenv("OMP_WAIT_POLICY")) return;
+  for (const char* chosen : {"GOMP_SPINCOUNT", "OMP_WAIT_POLICY", "OMP_PROC_BIND", "OMP_PLACES", "GOMP_CPU_AFFINITY"})
+    if (std::getenv(chosen)) return;
   if (setenv("GOMP_SPINCOUNT", "2000", 1) != 0) return;
   execv("/proc/self/exe", argv);
 }

@@ -56,6 +56,18 @@ check explicit 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/two" -q
 for f in summary.json timeseries.csv scene.resolved.toml checkpoint.bin; do
   [ -s "$work/two/$f" ] || { echo "FAIL explicit: $f missing"; fail=$((fail + 1)); }
 done
+# Threads bound by the user (OMP_PROC_BIND, OMP_PLACES) keep a core each: runout's own restart
+# (for shorter OpenMP spins) must not inherit the one CPU libgomp pinned its first thread to.
+# libgomp prints each thread's place at the first parallel region (OMP_DISPLAY_AFFINITY).
+if [ "$(nproc)" -ge 2 ]; then
+  for bind in OMP_PROC_BIND=spread OMP_PLACES=cores; do
+    places=$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$bind" OMP_DISPLAY_AFFINITY=true \
+      "$bin" run "$work/two.toml" --out "$work/bound" -q --threads 2 --overwrite 2>&1 |
+      awk '/^level 1 thread/ { seen[$NF] = 1 } END { print length(seen) }')
+    if [ "$places" -ge 2 ]; then pass=$((pass + 1)); else
+      echo "FAIL bound_threads: with $bind the two threads shared $places place(s)"; fail=$((fail + 1)); fi
+  done
+fi
 # The resolved scene runs again to the same summary numbers.
 check resolved 0 'mu_global' -- "$bin" run "$work/two/scene.resolved.toml" --out "$work/two_again" -q --threads 2
 a=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two/summary.json")
