@@ -293,6 +293,21 @@ int run_command(const RunOptions& o) {
       std::fprintf(stderr, "  t* = %8.2f  E_k/Ep0 = %.3e  %8.0f steps/s\n", t_star, ratio, rate);
     });
   }
+  // Threads chosen by runout (no --threads) follow the cores the run gets: beside another
+  // program fewer, then all again once they are free (ThreadGovernor). An explicit --threads
+  // is kept as asked.
+  std::optional<ThreadGovernor> governor;
+  if (o.threads <= 0 && threads > 1) {
+    governor.emplace(threads);
+    run.set_thread_governor(&*governor, [quiet = o.quiet, most = threads](double t_star, int now, double cores) {
+      if (quiet) return;
+      if (now < most)
+        std::fprintf(stderr, "runout: t* = %.2f: the run got %.1f of %d cores (other programs hold the rest): %d thread%s\n",
+                     t_star, cores, most, now, now == 1 ? "" : "s");
+      else
+        std::fprintf(stderr, "runout: t* = %.2f: trying %d threads again\n", t_star, now);
+    });
+  }
   // The handlers stay until summary.json is written: a signal that arrives once the run has
   // ended (while the movie drains, say) lets its results be finished instead of lost.
   const SignalScope signals;

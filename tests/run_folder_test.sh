@@ -15,7 +15,7 @@ same_summary() {  # same_summary A B: every field but the wall times
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for k in ("wall_seconds", "particle_steps_per_second", "profile_seconds", "preparation_seconds",
-          "pile_from_cache", "preparation"):
+          "pile_from_cache", "preparation", "threads_fewest"):
     a.pop(k, None); b.pop(k, None)
 diff = sorted(k for k in set(a) | set(b) if a.get(k) != b.get(k))
 if diff:

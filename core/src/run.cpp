@@ -181,6 +181,7 @@ RunResult AvalancheRun::run() {
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(setup_.unit_time / setup_.dt));
   const std::int64_t check_every = std::max<std::int64_t>(1, steps_per_unit / 20);
   auto last_report = t0;
+  fewest_threads_ = world_.settings().threads;
   std::int64_t steps_at_report = steps0;
 
   auto record = [&] {
@@ -226,6 +227,14 @@ RunResult AvalancheRun::run() {
     if (end_time_reached()) done = true;
     if (world_.step_count() % check_every == 0) {
       done = finished() || done;
+      if (governor_) {
+        const int now_threads = world_.settings().threads, next = governor_->advise(now_threads);
+        if (next != now_threads) {
+          world_.set_threads(next);
+          fewest_threads_ = std::min(fewest_threads_, next);
+          if (threads_changed_) threads_changed_(t_star(), next, governor_->last_cores_used());
+        }
+      }
       const auto now = Clock::now();
       const double secs = std::chrono::duration<double>(now - last_report).count();
       if (progress_ && secs >= 2.0) {
@@ -264,6 +273,7 @@ RunResult AvalancheRun::result(double wall_seconds) const {
   r.dt = setup_.dt;
   r.wall_seconds = wall_seconds;
   r.observer_seconds = observer_seconds_;
+  r.fewest_threads = fewest_threads_ > 0 ? fewest_threads_ : world_.settings().threads;
   r.counts = setup_.counts;
   // Large = the species of the largest nominal diameter; everything else counts as small.
   r.n_large = setup_.counts[setup_.largest_species];

@@ -95,6 +95,7 @@ std::string summary_json(const RunResult& r, const SummaryContext& c) {
   j["preparation"] = c.settle ? settle_report_object(*c.settle) : nlohmann::json();
   j["particle_steps_per_second"] = r.particle_steps_per_second;
   j["threads"] = c.threads;
+  j["threads_fewest"] = r.fewest_threads > 0 ? r.fewest_threads : c.threads;
   j["seed"] = c.seed;
   j["profile_seconds"] = {{"contact_forces", r.profile.contact_forces},
                           {"integrate", r.profile.integrate},

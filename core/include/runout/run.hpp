@@ -15,6 +15,7 @@
 #include "runout/observer.hpp"
 #include "runout/run_state.hpp"
 #include "runout/setup.hpp"
+#include "runout/thread_governor.hpp"
 #include "runout/world.hpp"
 
 namespace runout {
@@ -47,6 +48,9 @@ struct RunResult {
   // Wall time the simulation thread spent in observers this segment (planning pictures and
   // waiting for their helpers, writing checkpoints, dumps, VTK frames): what they cost the run.
   double observer_seconds = 0;
+  // The fewest threads the physics stepped with this segment (below the run's count only where
+  // a ThreadGovernor gave cores back to other programs).
+  int fewest_threads = 0;
 };
 
 class AvalancheRun {
@@ -64,6 +68,13 @@ class AvalancheRun {
   // Looked at after every step; once non-zero the run stops there, before that step's rest
   // test, so its state is a checkpoint's and a resume continues exactly (SIGINT, SIGTERM).
   void set_stop_request(const std::atomic<int>* flag) { stop_request_ = flag; }
+  // The physics' thread count follows the governor's advice, asked between steps (about every
+  // 1/20 t*); `changed(t*, threads, cores_used)` hears of each change. The trajectory does not
+  // depend on it.
+  void set_thread_governor(ThreadGovernor* governor, std::function<void(double, int, double)> changed = {}) {
+    governor_ = governor;
+    threads_changed_ = std::move(changed);
+  }
   RunResult run();
 
   const RunState& state() const { return state_; }
@@ -93,6 +104,9 @@ class AvalancheRun {
   // step already ran before it was written (the uninterrupted run's schedule, SPEC §5).
   bool resumed_ = false;
   const std::atomic<int>* stop_request_ = nullptr;
+  ThreadGovernor* governor_ = nullptr;
+  std::function<void(double, int, double)> threads_changed_;
+  int fewest_threads_ = 0;
   bool interrupted_ = false;
   bool reached_end_time_ = false;
   double min_end_time_ = 0;

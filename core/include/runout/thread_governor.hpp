@@ -1,0 +1,49 @@
+// How many threads a run's physics uses while other programs share its cores. The threads of
+// a step meet twice (the handoff and OpenMP's join), so a step waits for whichever thread the
+// scheduler has parked: two 2-thread runs on two cores ran 15 M particle-steps/s each, where
+// one thread each would run near the 1-thread speed (docs/performance.md). The physics is
+// bit-identical at any thread count, so the count can follow the cores the run actually gets.
+//
+// The signal is the process's own CPU time over a window of wall time: threads that are not
+// parked keep running (computing or spinning), so a run that gets its cores uses about one CPU
+// second per thread per second. Getting clearly less (below kFairShare of that), the run drops
+// to the cores it got. Whether they are back cannot be told from fewer threads, so every
+// retry interval the full count is tried again for a window.
+#pragma once
+
+#include <functional>
+
+namespace runout {
+
+class ThreadGovernor {
+ public:
+  struct Clock {
+    double wall_seconds = 0, cpu_seconds = 0;  // now, and this process's CPU time so far
+  };
+  static constexpr double kFairShare = 0.75;
+
+  // `most`: the threads the run may use (its cores). `now`: the clock, by default the steady
+  // clock and getrusage(RUSAGE_SELF).
+  explicit ThreadGovernor(int most, double window_seconds = 1.0, double retry_seconds = 30.0,
+                          std::function<Clock()> now = {});
+
+  // Called between steps, cheaply and often; the threads the run should use from now on.
+  // `current` is what it uses now (a window spans one count only).
+  int advise(int current);
+
+  int most() const { return most_; }
+  // The CPU seconds per wall second of the last finished window (what the run got).
+  double last_cores_used() const { return last_cores_; }
+
+ private:
+  int most_;
+  double window_, retry_;
+  std::function<Clock()> now_;
+  bool started_ = false;
+  int window_threads_ = 0;
+  Clock window_start_;
+  double reduced_at_ = 0;  // wall time of the last drop below most
+  double last_cores_ = 0;
+};
+
+}  // namespace runout

@@ -1,0 +1,54 @@
+#include "runout/thread_governor.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace runout {
+
+namespace {
+
+ThreadGovernor::Clock process_clock() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  const auto wall = std::chrono::steady_clock::now().time_since_epoch();
+  return {std::chrono::duration<double>(wall).count(), seconds(u.ru_utime) + seconds(u.ru_stime)};
+}
+
+}  // namespace
+
+ThreadGovernor::ThreadGovernor(int most, double window_seconds, double retry_seconds,
+                               std::function<Clock()> now)
+    : most_(std::max(1, most)), window_(window_seconds), retry_(retry_seconds),
+      now_(now ? std::move(now) : std::function<Clock()>(process_clock)) {}
+
+int ThreadGovernor::advise(int current) {
+  if (most_ == 1) return 1;
+  const Clock now = now_();
+  // A window starts afresh at the first call and whenever the count changed under it.
+  if (!started_ || current != window_threads_) {
+    started_ = true;
+    window_threads_ = current;
+    window_start_ = now;
+    return current;
+  }
+  const double wall = now.wall_seconds - window_start_.wall_seconds;
+  if (wall < window_) return current;
+  last_cores_ = (now.cpu_seconds - window_start_.cpu_seconds) / wall;
+  window_start_ = now;
+  int next = current;
+  if (current > 1 && last_cores_ < kFairShare * current) {
+    // The cores the run got, at least one; fewer than it has now.
+    next = std::clamp(static_cast<int>(std::lround(last_cores_)), 1, current - 1);
+    reduced_at_ = now.wall_seconds;
+  } else if (current < most_ && now.wall_seconds - reduced_at_ >= retry_) {
+    next = most_;  // tried for one window; dropped again if the cores are still taken
+  }
+  window_threads_ = next;
+  return next;
+}
+
+}  // namespace runout
