@@ -7,9 +7,9 @@
 
 namespace runout {
 
-void ListDrift::rebuilt(double near, double far_slack, double skin) {
-  reach_ = near;
-  far_slack_ = far_slack;
+void ListDrift::rebuilt(double largest_radius, double skin) {
+  reach_ = 2 * largest_radius + kFarSkins * skin;
+  far_slack_ = (kFarSkins - 1) * skin;
   skin_ = skin;
   found_ = false;
 }

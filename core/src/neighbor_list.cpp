@@ -60,6 +60,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   walls.row_start.assign(static_cast<size_t>(n) + 1, 0);
   pairs.i.clear(); pairs.j.clear();
   walls.disc.clear(); walls.segment.clear();
+  largest_radius_ = 0;
 
   if (n > 0) {
     // ---- cell grid ----
@@ -78,6 +79,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // would make the grid meaningless (a NaN or a coordinate beyond ~1e300 m loops or overflows).
     if (!finite || !std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin) || !(rmin > 0))
       throw NumericalError("neighbour search: disc positions or radii are not finite");
+    largest_radius_ = rmax;
     double cell = std::max(2 * rmin + skin, 1e-12);
     // Counted in floating point: a stray disc far away must neither overflow nor blow memory.
     auto cells_along = [&](double lo, double hi) { return std::floor((hi - lo) / cell) + 1; };

@@ -150,11 +150,7 @@ void World::rebuild_lists() {
   x_at_rebuild_ = particles_.x;
   y_at_rebuild_ = particles_.y;
   radius_at_rebuild_ = particles_.radius;
-  // Groups whose centres are farther apart than two of the largest discs and kFarSkins skins
-  // reach each other only once the whole flow's spread has grown by that much (ListDrift).
-  constexpr double kFarSkins = 4;
-  const double rmax = particles_.size() ? *std::max_element(particles_.radius.begin(), particles_.radius.end()) : 0.0;
-  drift_.rebuilt(2 * rmax + kFarSkins * settings_.skin, (kFarSkins - 1) * settings_.skin, settings_.skin);
+  drift_.rebuilt(search_.largest_radius(), settings_.skin);
   list_drift_ = 0;
   watch_groups_ = false;
   max_growth_ = 0;

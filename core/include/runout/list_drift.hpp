@@ -21,10 +21,13 @@ class ListDrift {
  public:
   static constexpr std::size_t kGroup = 32;  // discs
 
-  // At a rebuild: groups whose centres are within `near` are near each other (so other groups'
-  // discs were at least `far_slack` beyond the skin apart). The groups are found when first
-  // needed.
-  void rebuilt(double near, double far_slack, double skin);
+  // Groups whose centres are farther apart than two of the largest discs and kFarSkins skins
+  // reach each other only once the whole flow's spread has grown by kFarSkins - 1 skins.
+  static constexpr double kFarSkins = 4;
+
+  // At a rebuild, with the largest radius: groups whose centres are within 2 r_max + kFarSkins
+  // skins are near each other. The groups are found when first needed.
+  void rebuilt(double largest_radius, double skin);
   // A bound, to hold against the skin, on how much closer two unlisted bodies came since the
   // rebuild, from the centres now (x, y) and at the rebuild (x0, y0), each disc's wall margin
   // at the rebuild, and the spread of all displacements (the diagonal of their box).

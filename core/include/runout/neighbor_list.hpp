@@ -76,9 +76,12 @@ class NeighborSearch {
   // Per disc, from the last rebuild: how far it can move before it could touch an active wall
   // segment it is not listed with (at least the skin; infinite without walls). ListDrift.
   const std::vector<double>& wall_margin() const { return wall_margin_; }
+  // The largest radius at the last rebuild (0 without discs).
+  double largest_radius() const { return largest_radius_; }
 
  private:
   std::vector<double> wall_margin_;
+  double largest_radius_ = 0;
   std::vector<std::int32_t> cell_start_, cell_disc_;
   std::vector<std::int32_t> disc_cell_;
   std::vector<std::int32_t> disc_place_;  // disc -> its index in cell_disc_ (the grid's order)
