@@ -6,9 +6,11 @@
 //
 // The signal is the process's own CPU time over a window of wall time: threads that are not
 // parked keep running (computing or spinning), so a run that gets its cores uses about one CPU
-// second per thread per second. Getting clearly less (below kFairShare of that), the run drops
-// to the cores it got. Whether they are back cannot be told from fewer threads, so every
-// retry interval the full count is tried again for a window.
+// second per thread per second. Getting clearly less (below kFairShare of that) for two windows
+// in a row (one short window is often the host, not another program), while the machine's
+// cores were busy (less than kIdleCores of them idle: a run's own serial phases also leave its
+// threads parked, but then a core idles), the run drops to the cores it got. Whether they are
+// back cannot be told from fewer threads, so every retry interval the full count is tried again.
 #pragma once
 
 #include <functional>
@@ -19,11 +21,13 @@ class ThreadGovernor {
  public:
   struct Clock {
     double wall_seconds = 0, cpu_seconds = 0;  // now, and this process's CPU time so far
+    double idle_seconds = 0;  // the machine's idle CPU time so far, summed over its cores
   };
-  static constexpr double kFairShare = 0.75;
+  static constexpr double kFairShare = 0.75, kIdleCores = 0.25;
 
   // `most`: the threads the run may use (its cores). `now`: the clock, by default the steady
-  // clock and getrusage(RUSAGE_SELF).
+  // clock, getrusage(RUSAGE_SELF) and the idle time of /proc/stat (0 where it cannot be read:
+  // every short window then counts).
   explicit ThreadGovernor(int most, double window_seconds = 1.0, double retry_seconds = 30.0,
                           std::function<Clock()> now = {});
 
@@ -43,7 +47,8 @@ class ThreadGovernor {
   int window_threads_ = 0;
   Clock window_start_;
   double reduced_at_ = 0;  // wall time of the last drop below most
-  double last_cores_ = 0;
+  int short_windows_ = 0;  // windows in a row that got less than the fair share
+  double last_cores_ = 0, last_idle_cores_ = 0;
 };
 
 }  // namespace runout
