@@ -99,10 +99,10 @@ TEST(Blend, CoverageInIntegersEqualsTheBlendInDouble) {
     }
 }
 
-// The PNG writer deflates strips of rows side by side and joins them into one zlib stream;
-// libpng's reader (which inflates with zlib and checks the stream's Adler-32) must give back
-// every pixel, for heights of one strip and of several, odd widths, with and without alpha.
-TEST(Png, StripsDecodeToTheSamePixels) {
+// The PNG writer filters rows in chunks and deflates them with igzip, which writes the zlib
+// wrapper itself; libpng's reader (which inflates with zlib and checks the stream's Adler-32)
+// must give back every pixel, for one row and many, odd widths, with and without alpha.
+TEST(Png, EncodedFramesDecodeToTheSamePixels) {
   std::uint32_t state = 12345;
   auto next = [&] { state = state * 1664525u + 1013904223u; return static_cast<std::uint8_t>(state >> 24); };
   const auto dir = std::filesystem::temp_directory_path() / "runout_png_strips";
@@ -110,8 +110,8 @@ TEST(Png, StripsDecodeToTheSamePixels) {
   for (auto [w, h] : {std::pair{1, 1}, {7, 63}, {300, 64}, {301, 257}, {1280, 720}}) {
     for (bool alpha : {false, true}) {
       Image img(w, h, {255, 255, 255, 255});
-      // Noise in the left third (literals), flat blocks elsewhere (runs), so the strips' pieces
-      // hold both kinds of DEFLATE block.
+      // Noise in the left third (literals), flat blocks elsewhere (runs), so the stream holds
+      // both kinds of DEFLATE block.
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
           if (3 * x < w) img.set(x, y, {next(), next(), next(), alpha ? next() : std::uint8_t{255}});
