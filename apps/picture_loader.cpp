@@ -55,7 +55,7 @@ const PictureApi& load_module() {
   throw std::runtime_error(
       "this runout cannot draw: its picture module runout_pictures.so was not found" + tried +
       "\nIt is built with the renderer (install libosmesa6-dev, libpng-dev, libavcodec-dev, libavformat-dev, "
-      "libswscale-dev, libfreetype-dev, libcairo2-dev, libisal-dev and rebuild), or point RUNOUT_PICTURES_MODULE at it");
+      "libswscale-dev, libfreetype-dev, libcairo2-dev, libisal-dev, libyuv-dev and rebuild), or point RUNOUT_PICTURES_MODULE at it");
 }
 
 // Loaded once per process, on the first picture request (a function-local static: the

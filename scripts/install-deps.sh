@@ -9,7 +9,7 @@ packages=(
   libgtest-dev
   clang libclang-rt-14-dev libomp-dev
   parallel slurm-wlm munge chromium
-  pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core libcairo2-dev libisal-dev
+  pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core libcairo2-dev libisal-dev libyuv-dev
   poppler-utils librsvg2-bin
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
 )

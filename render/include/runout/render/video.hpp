@@ -1,5 +1,5 @@
-// Video through FFmpeg's libraries: H.264 (libx264) in MP4, yuv420p with BT.709 tags so every
-// player shows it right; or a lossless H.264 (yuv444p, qp 0) for archiving. Frames are encoded
+// Video through FFmpeg's libraries: H.264 (libx264) in MP4, yuv420p (BT.601 matrix, limited
+// range, tagged so every player shows it right); or a lossless H.264 (yuv444p, qp 0) for archiving. Frames are encoded
 // on a worker thread, overlapped with the simulation; the file appears under its name only
 // when complete (temp file + rename).
 #pragma once
