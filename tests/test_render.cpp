@@ -83,6 +83,35 @@ TEST(DiscFacts, DiscCentredOutsideTheFrameStillShowsItsEdge) {
 }
 
 // Text and rectangles blend in integers; the bytes must be those of the blend in double.
+// A renderer that drew a frame before clears and redraws only where the discs were or are
+// (when view, walls and style are unchanged): the frames must be the bytes a fresh renderer
+// draws, whether the discs moved across the whole frame, left it, or the style changed.
+TEST(DiscFacts, AFrameAfterAnotherIsTheFrameDrawnAlone) {
+  const View view{0.0, 0.0, 10.0};
+  const std::vector<SegmentLine> walls = {{0, 1, 16, 1}, {15, 1, 15, 9}};
+  DrawStyle style;
+  style.spokes = true;
+  auto pile = [](double x0, int n) {
+    DiscBatch d;
+    for (int k = 0; k < n; ++k) d.add(x0 + 0.45 * (k % 5), 1.5 + 0.45 * (k / 5), 0.2, 0.4 * k, {213, 94, 0, 255});
+    return d;
+  };
+  DrawStyle outlined = style;
+  outlined.outline_px = 1.0;
+  struct Frame { DiscBatch discs; DrawStyle style; };
+  // Left, then far right (the left must be cleared), then one disc partly outside the frame,
+  // then none, then an outline (a different style: a whole clear), then the left again.
+  const std::vector<Frame> frames = {{pile(1.0, 15), style},  {pile(12.0, 15), style}, {pile(15.9, 3), style},
+                                     {DiscBatch{}, style},    {pile(6.0, 10), outlined}, {pile(1.0, 15), outlined}};
+  GlRenderer reused(160, 90);
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const Image after = reused.draw(view, frames[f].discs, walls, frames[f].style);
+    GlRenderer fresh(160, 90);
+    const Image& alone = fresh.draw(view, frames[f].discs, walls, frames[f].style);
+    EXPECT_TRUE(after.rgba == alone.rgba) << "frame " << f;
+  }
+}
+
 TEST(Blend, CoverageInIntegersEqualsTheBlendInDouble) {
   Image a(256, 256), b(256, 256);
   for (int y = 0; y < 256; ++y)

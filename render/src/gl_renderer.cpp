@@ -53,6 +53,34 @@ GLuint link(const char* vert, const char* frag, const char* name) {
   return p;
 }
 
+// A rectangle of window pixels (OpenGL's: x right, y up from the frame's bottom row), [x0, x1)
+// x [y0, y1).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  PixelRect joined(const PixelRect& o) const {
+    if (empty()) return o;
+    if (o.empty()) return *this;
+    return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+  }
+};
+
+// The pixels the discs can touch in a frame of w x h: each disc's square of half-side r + 1 px
+// (the shader's anti-aliased margin), one more pixel for rounding, clipped to the frame.
+PixelRect disc_pixels(const View& view, const DiscBatch& discs, int w, int h) {
+  if (discs.size() == 0) return {};
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  for (std::size_t k = 0; k < discs.size(); ++k) {
+    const double cx = (discs.x[k] - view.x0) * view.scale, cy = (discs.y[k] - view.y0) * view.scale;
+    if (!std::isfinite(cx) || !std::isfinite(cy)) continue;
+    const double half = discs.radius[k] * view.scale + 2.0;
+    lo_x = std::min(lo_x, cx - half); hi_x = std::max(hi_x, cx + half);
+    lo_y = std::min(lo_y, cy - half); hi_y = std::max(hi_y, cy + half);
+  }
+  auto clip = [](double v, int n) { return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(n))); };
+  return {clip(std::floor(lo_x), w), clip(std::floor(lo_y), h), clip(std::ceil(hi_x), w), clip(std::ceil(hi_y), h)};
+}
+
 // OpenGL blends in premultiplied alpha; a PNG stores straight alpha.
 void unpremultiply(Image& image) {
   std::uint8_t* p = image.rgba.data();
@@ -73,6 +101,14 @@ struct GlRenderer::Impl {
   GLuint disc_program = 0, segment_program = 0;
   GLuint vao = 0, disc_buffers[5] = {}, quad_corner_buffer = 0, segment_buffer = 0;
   std::vector<float> scratch;
+  // What the colour buffer holds from the last frame: drawn with these, its discs within
+  // last_discs. Everything outside them is background and walls, which a frame like it keeps.
+  bool drawn = false;
+  View last_view;
+  DrawStyle last_style;
+  std::vector<SegmentLine> last_walls;
+  DiscMethod last_method = DiscMethod::point_sprites;
+  PixelRect last_discs;
 
   void make_current() {
     if (!OSMesaMakeCurrent(context, frame.rgba.data(), GL_UNSIGNED_BYTE, frame.width, frame.height))
@@ -120,6 +156,17 @@ Image& GlRenderer::draw(const View& view, const DiscBatch& discs,
   const float a = style.background.a / 255.0f;
   glClearColor(style.background.r / 255.0f * a, style.background.g / 255.0f * a,
                style.background.b / 255.0f * a, a);
+  // A movie's frames share their view, walls and style; llvmpipe clears a whole 1280x720 frame
+  // in ~1 ms, most of it background that stays (docs/performance.md, issue 12, ninth session).
+  const PixelRect now = disc_pixels(view, discs, width_, height_);
+  const bool like_last = m.drawn && view == m.last_view && style == m.last_style && walls == m.last_walls &&
+                         method_ == m.last_method;
+  const PixelRect changed = now.joined(m.last_discs);
+  const bool partial = like_last && !changed.empty();
+  if (partial) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(changed.x0, changed.y0, changed.x1 - changed.x0, changed.y1 - changed.y0);
+  }
   glClear(GL_COLOR_BUFFER_BIT);
   glBindVertexArray(m.vao);
 
@@ -215,9 +262,17 @@ Image& GlRenderer::draw(const View& view, const DiscBatch& discs,
       glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * n));
     }
   }
+  if (partial) glDisable(GL_SCISSOR_TEST);
   glFinish();  // OSMesa copies the frame into `frame` here
+  m.drawn = false;  // until this frame is known to be whole
   if (const GLenum err = glGetError(); err != GL_NO_ERROR)
     throw RenderError("OpenGL error " + std::to_string(err) + " while drawing a frame");
+  m.drawn = true;
+  m.last_view = view;
+  m.last_style = style;
+  if (!like_last) m.last_walls = walls;
+  m.last_method = method_;
+  m.last_discs = now;
   if (style.background.a < 255) unpremultiply(m.frame);
   return m.frame;
 }

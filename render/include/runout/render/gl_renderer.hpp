@@ -20,6 +20,7 @@ class RenderError : public std::runtime_error {
 struct View {
   double x0 = 0, y0 = 0;
   double scale = 1;
+  bool operator==(const View&) const = default;
 };
 
 // Discs to draw, in world metres; colour as RGBA8.
@@ -37,6 +38,7 @@ struct DiscBatch {
 
 struct SegmentLine {
   double ax, ay, bx, by;
+  bool operator==(const SegmentLine&) const = default;
 };
 
 enum class DiscMethod { point_sprites, quads };
@@ -48,6 +50,7 @@ struct DrawStyle {
   Rgba ink = {30, 30, 30, 255};            // spokes
   Rgba wall = {51, 51, 51, 255};
   double wall_half_width_px = 1.5;
+  bool operator==(const DrawStyle&) const = default;
 };
 
 class GlRenderer {
@@ -66,7 +69,9 @@ class GlRenderer {
 
   // Draws one frame and returns it (top row first): the renderer's own buffer, valid until the
   // next draw, which the caller may draw over (the overlays) or copy. Discs larger than the
-  // point-size limit (255 px) are drawn as quads whatever the method.
+  // point-size limit (255 px) are drawn as quads whatever the method. When the view, walls,
+  // style and method are those of the last frame, only the rectangle the discs covered then or
+  // cover now is cleared and redrawn: the same pixels, at a fraction of a whole clear.
   Image& draw(const View& view, const DiscBatch& discs, const std::vector<SegmentLine>& walls,
              const DrawStyle& style);
 
