@@ -175,6 +175,50 @@ TEST(Run, TheTimeSpentInObserversIsReported) {
   EXPECT_LE(r.observer_seconds, r.wall_seconds);
 }
 
+// An observer whose helpers work from t* = 1 to t* = 2 (a movie's batch): the physics leaves
+// them a core meanwhile and takes it back after, and ends with the run's own thread count; the
+// trajectory is bit for bit the one without the observer.
+class CoreBorrower : public Observer {
+ public:
+  explicit CoreBorrower(const World& world) : world_(world) {}
+  void observe(const World&, const RunState&, double t_star) override { working_ = t_star >= 1.0 && t_star < 2.0; }
+  int helper_cores() override {
+    // The step just taken was stepped with the threads this call's predecessor's answer left.
+    (answered_ ? while_working : otherwise).insert(world_.settings().threads);
+    answered_ = working_;
+    return working_ ? 1 : 0;
+  }
+  std::set<int> while_working, otherwise;
+
+ private:
+  const World& world_;
+  bool working_ = false, answered_ = false;
+};
+
+TEST(Run, HelpersWorkingGetACoreOfTheirOwn) {
+  const int cores = available_cores();
+  SceneDef s = pit_and_roller();
+  s.output.end_time = 3.0;
+  const SceneSetup setup = derive_setup(s);
+  World plain = build_explicit_world(s, setup, cores);
+  AvalancheRun(plain, s, setup).run();
+
+  World w = build_explicit_world(s, setup, cores);
+  CoreBorrower borrower(w);
+  AvalancheRun run(w, s, setup);
+  run.add_observer(borrower, {0.25, 0.0, {}});
+  const RunResult r = run.run();
+  EXPECT_EQ(borrower.while_working, std::set<int>{std::max(1, cores - 1)});
+  EXPECT_EQ(borrower.otherwise, std::set<int>{cores});
+  EXPECT_EQ(w.settings().threads, cores);
+  EXPECT_EQ(r.fewest_threads, cores);  // lending a core is not a governor's drop
+  ASSERT_EQ(w.particles().size(), plain.particles().size());
+  for (std::size_t i = 0; i < w.particles().size(); ++i) {
+    EXPECT_EQ(w.particles().x[i], plain.particles().x[i]);
+    EXPECT_EQ(w.particles().omega[i], plain.particles().omega[i]);
+  }
+}
+
 // A wait for the pictures' helpers runs on every physics thread, each its own OpenMP thread.
 TEST(Run, WaitingRunsOnEveryPhysicsThread) {
   for (int threads : {1, 2, 3}) {

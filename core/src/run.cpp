@@ -137,6 +137,16 @@ void AvalancheRun::fire_observers() {
   }
 }
 
+// While the observers' helpers work, the physics leaves them the cores it would otherwise
+// share with them (Observer::helper_cores).
+void AvalancheRun::share_cores() {
+  int helpers = 0;
+  for (auto& s : observers_) helpers += s.observer->helper_cores();
+  const int lent = std::max(0, threads_ + helpers - cores_);
+  const int now = std::max(1, threads_ - lent);
+  if (now != world_.settings().threads) world_.set_threads(now);
+}
+
 // At rest (SPEC §5): the kinetic energy of the mass stays below the threshold (of Ep0) for
 // `hold` t*. The mass is every disc touching another disc: with no rolling resistance in the
 // model (as in the thesis) a lone disc rolling on the floor never stops, and must not keep the
@@ -181,7 +191,8 @@ RunResult AvalancheRun::run() {
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(setup_.unit_time / setup_.dt));
   const std::int64_t check_every = std::max<std::int64_t>(1, steps_per_unit / 20);
   auto last_report = t0;
-  fewest_threads_ = world_.settings().threads;
+  fewest_threads_ = threads_ = world_.settings().threads;
+  cores_ = available_cores();
   std::int64_t steps_at_report = steps0;
 
   auto record = [&] {
@@ -209,6 +220,7 @@ RunResult AvalancheRun::run() {
   if (!resumed_) {
     record();
     fire_observers();
+    share_cores();
     done = finished();
   } else {
     if (state_.series_ends_with_end_row) state_.series.pop_back();
@@ -220,6 +232,7 @@ RunResult AvalancheRun::run() {
     world_.step();
     record();
     fire_observers();
+    share_cores();
     if (stop_request_ && stop_request_->load(std::memory_order_relaxed) != 0) {
       interrupted_ = true;  // no end row: the state is exactly a checkpoint taken at this step
       break;
@@ -228,9 +241,10 @@ RunResult AvalancheRun::run() {
     if (world_.step_count() % check_every == 0) {
       done = finished() || done;
       if (governor_) {
-        const int now_threads = world_.settings().threads, next = governor_->advise(now_threads);
-        if (next != now_threads) {
-          world_.set_threads(next);
+        const int next = governor_->advise(threads_);
+        if (next != threads_) {
+          threads_ = next;
+          share_cores();
           fewest_threads_ = std::min(fewest_threads_, next);
           if (threads_changed_) threads_changed_(t_star(), next, governor_->last_cores_used());
         }
@@ -245,6 +259,7 @@ RunResult AvalancheRun::run() {
       }
     }
   }
+  world_.set_threads(threads_);  // the helpers' cores back: a later segment starts from the run's count
   // The final state is always in the series, once.
   if (!interrupted_ && (state_.series.empty() || state_.series.back().t_star != t_star())) {
     state_.series.push_back(sample());

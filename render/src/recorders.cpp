@@ -43,30 +43,26 @@ void MovieRecorder::draw(const FramePlan& plan) {
 }
 
 void MovieRecorder::observe(const World& world, const RunState&, double t_star) {
-  const int threads = world.settings().threads;
-  if (threads < available_cores()) {
-    // A core the physics leaves free: the helpers work there, beside it, and the simulation
-    // waits (asleep) only when they are a batch behind.
-    worker_->set_open(true);
-    if (video_) video_->set_encoding(true);
-    if (worker_->queued() >= kBatch) wait_on_every_thread(threads, [this] { worker_->wait_for_room(kBatch); });
-    worker_->push(maker_.plan(world, t_star));
-    ++frames_;
-    return;
-  }
+  // Two batches behind (a scene that steps faster than frames are drawn): the simulation waits,
+  // asleep on every physics thread, for room.
+  if (worker_->queued() >= 2 * kBatch)
+    wait_on_every_thread(world.settings().threads, [this] { worker_->wait_for_room(kBatch); });
   worker_->push(maker_.plan(world, t_star));
   ++frames_;
-  if (worker_->queued() < kBatch) return;
-  // A batch is planned: draw and encode it with every physics thread asleep, so the helpers
-  // have every core, then step on with the cores to the physics alone.
+  if (drawing_ || worker_->queued() < kBatch) return;
   worker_->set_open(true);
   if (video_) video_->set_encoding(true);
-  wait_on_every_thread(world.settings().threads, [this] {
-    worker_->wait_drained();
-    if (video_) video_->wait_encoded();
-  });
+  drawing_ = true;
+}
+
+int MovieRecorder::helper_cores() {
+  if (!drawing_) return 0;
+  if (!worker_->idle() || (video_ && !video_->encoded())) return 1;
+  // The batch is drawn and encoded: the next waits until it is whole, and the core goes back.
   worker_->set_open(false);
   if (video_) video_->set_encoding(false);
+  drawing_ = false;
+  return 0;
 }
 
 void MovieRecorder::finish() {

@@ -199,7 +199,7 @@ void VideoWriter::write(const Image& frame) {
 }
 
 void VideoWriter::set_encoding(bool on) { impl_->worker->set_open(on); }
-void VideoWriter::wait_encoded() { impl_->worker->wait_drained(); }
+bool VideoWriter::encoded() { return impl_->worker->idle(); }
 
 void VideoWriter::finish() { impl_->worker->finish(); }
 

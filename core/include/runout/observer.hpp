@@ -16,6 +16,13 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void observe(const World& world, const RunState& state, double t_star) = 0;
+  // The cores this observer's own helper threads (a movie's drawing and encoding) are working
+  // on now; asked between steps, so it may also notice here that they are done. Where these
+  // and the physics' threads would be more than the process's cores, the physics steps with
+  // fewer threads (at least one) until they are done: it is bit-identical at any thread count,
+  // so only the speed changes, and a two-thread step loses less than a core's worth to a
+  // third thread (docs/performance.md, issue 12, tenth session).
+  virtual int helper_cores() { return 0; }
 };
 
 // When an observer fires: every `every` t* from `first`, and/or at listed times. It fires on the

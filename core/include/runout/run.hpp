@@ -49,7 +49,8 @@ struct RunResult {
   // waiting for their helpers, writing checkpoints, dumps, VTK frames): what they cost the run.
   double observer_seconds = 0;
   // The fewest threads the physics stepped with this segment (below the run's count only where
-  // a ThreadGovernor gave cores back to other programs).
+  // a ThreadGovernor gave cores back to other programs; not the steps that left a core to the
+  // observers' helpers).
   int fewest_threads = 0;
 };
 
@@ -89,6 +90,7 @@ class AvalancheRun {
     std::size_t next_at = 0;
   };
   void fire_observers();
+  void share_cores();
   bool finished();
   void freeze_rest();
   RunResult result(double wall_seconds) const;
@@ -107,6 +109,8 @@ class AvalancheRun {
   ThreadGovernor* governor_ = nullptr;
   std::function<void(double, int, double)> threads_changed_;
   int fewest_threads_ = 0;
+  int threads_ = 1;  // the physics' threads but for the observers' helpers: the run's, or the governor's
+  int cores_ = 1;    // the process's cores
   bool interrupted_ = false;
   bool reached_end_time_ = false;
   double min_end_time_ = 0;

@@ -1,8 +1,6 @@
 // A queue of items processed in order by one helper thread, only while its producer lets it
-// (open). Where the physics takes every core, a movie's frames are drawn and encoded while the
-// physics threads wait for them (a batch is full) or after the run, never beside a stepping
-// physics thread: preempting one mid-phase stalls its partner at the next barrier, so a frame
-// would cost twice its CPU time. Where it leaves a core free, the helpers work there.
+// (open): a movie's frames are drawn and encoded a batch at a time, on a core the physics
+// leaves them meanwhile (Observer::helper_cores), and after the run.
 // The helper runs at normal priority, so other processes cannot starve it: the SCHED_IDLE
 // helpers it replaces got no CPU while other programs kept every core busy (the 5 s quick
 // movie took 200 s; docs/performance.md, issue 12). The first error it raises is rethrown to
@@ -56,6 +54,11 @@ class BatchWorker {
   std::size_t queued() {
     std::lock_guard lock(mutex_);
     return queue_.size();
+  }
+  // Nothing queued or in process (or stopped on an error); cheap enough to ask every step.
+  bool idle() {
+    std::lock_guard lock(mutex_);
+    return (queue_.empty() && !busy_) || done_;
   }
   void set_open(bool open) {
     {

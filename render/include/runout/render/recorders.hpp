@@ -15,10 +15,11 @@
 namespace runout::render {
 
 // The simulation thread only plans each frame (camera, colours: a copy of the disc state); a
-// drawing thread draws it and hands it to the PNG writer and the video encoder's thread. Where
-// the physics takes every core, the helpers draw and encode a batch of plans at a time while
-// every physics thread waits asleep, so they never preempt a stepping physics thread; where
-// it leaves a core free, they work there beside it.
+// drawing thread draws it and hands it to the PNG writer and the video encoder's thread. They
+// draw and encode a batch of plans at a time, on a core of their own: where the physics takes
+// every core, it steps with one thread fewer until they are done (helper_cores). On two
+// cores that costs the physics less than waiting for them did, as two threads step less than
+// twice as fast as one, and the helpers' two threads fill the core they get.
 class MovieRecorder : public Observer {
  public:
   // `video_path` empty: no video; `png_dir` empty: no PNG sequence. `first`: the World the
@@ -28,6 +29,7 @@ class MovieRecorder : public Observer {
   const FrameOptions& frame() const { return maker_.options(); }  // with the height resolved
   ~MovieRecorder() override;
   void observe(const World& world, const RunState&, double t_star) override;
+  int helper_cores() override;
   void finish();  // draws what is queued and completes the video file; rethrows worker errors
   long frames() const { return frames_; }
 
@@ -36,6 +38,7 @@ class MovieRecorder : public Observer {
   // Plans drawn and encoded at a time (at most the video's queue_frames, so drawing a batch
   // never waits for the encoder's queue).
   static constexpr std::size_t kBatch = 8;
+  bool drawing_ = false;  // a batch is open to the helpers
 
   FrameMaker maker_;
   std::optional<VideoWriter> video_;

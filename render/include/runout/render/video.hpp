@@ -30,9 +30,9 @@ class VideoWriter {
 
   void write(const Image& frame);  // copied and queued; rethrows an encoder error from the worker
   // Encoding goes on beside the caller unless held (set_encoding(false)): frames then wait,
-  // unbounded, until it is on again (a movie encodes while the physics waits, recorders.hpp).
+  // unbounded, until it is on again (a movie encodes a batch at a time, recorders.hpp).
   void set_encoding(bool on);
-  void wait_encoded();      // until every frame written so far is encoded
+  bool encoded();  // every frame written so far is encoded (or the encoder stopped on an error)
   void finish();            // drains, writes the trailer, renames into place
 
  private:
