@@ -50,6 +50,7 @@ struct Decoded {
   std::vector<Image> frames;
   AVColorSpace space = AVCOL_SPC_UNSPECIFIED;
   AVColorRange range = AVCOL_RANGE_UNSPECIFIED;
+  double seconds = 0;  // the stream's duration, which players (and ffprobe) show frames within
 };
 
 Decoded decode(const std::string& path) {
@@ -63,6 +64,8 @@ Decoded decode(const std::string& path) {
   const AVCodecParameters* par = format->streams[index]->codecpar;
   out.space = par->color_space;
   out.range = par->color_range;
+  const AVStream* stream = format->streams[index];
+  out.seconds = static_cast<double>(stream->duration) * av_q2d(stream->time_base);
   const AVCodec* decoder = avcodec_find_decoder(par->codec_id);
   AVCodecContext* codec = avcodec_alloc_context3(decoder);
   avcodec_parameters_to_context(codec, par);
@@ -136,6 +139,8 @@ TEST_P(Movie, FfmpegReadsBackEveryFrameInItsColours) {
   EXPECT_EQ(d.range, AVCOL_RANGE_MPEG);
   ASSERT_GE(sws_matrix(d.space), 0) << "the stream's matrix is untagged or unknown: " << d.space;
   ASSERT_EQ(d.frames.size(), static_cast<std::size_t>(kFrames));
+  // Every frame for one frame time: a last frame of no duration is dropped by players.
+  EXPECT_NEAR(d.seconds, static_cast<double>(kFrames) / options.fps, 1e-6);
   for (const Image& img : d.frames) {
     ASSERT_EQ(img.width, kWidth);
     ASSERT_EQ(img.height, kHeight);

@@ -74,6 +74,9 @@ struct VideoWriter::Impl {
       const int r = avcodec_receive_packet(codec, packet);
       if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
       if (r < 0) throw RenderError("video: encoding failed: " + av_error(r));
+      // Each frame shows for one frame time; without it the MP4 muxer gives the last frame no
+      // duration and players (and FFmpeg's decoder) drop it.
+      if (packet->duration == 0) packet->duration = 1;
       av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
       packet->stream_index = stream->index;
       const int w = av_interleaved_write_frame(format, packet);
