@@ -82,7 +82,6 @@ TEST(DiscFacts, DiscCentredOutsideTheFrameStillShowsItsEdge) {
   EXPECT_EQ(img.at(2, 50), (Rgba{0, 0, 0, 255}));
 }
 
-// Text and rectangles blend in integers; the bytes must be those of the blend in double.
 // A renderer that drew a frame before clears and redraws only where the discs were or are
 // (when view, walls and style are unchanged): the frames must be the bytes a fresh renderer
 // draws, whether the discs moved across the whole frame, left it, or the style changed.
@@ -112,6 +111,7 @@ TEST(DiscFacts, AFrameAfterAnotherIsTheFrameDrawnAlone) {
   }
 }
 
+// Text and rectangles blend in integers; the bytes must be those of the blend in double.
 TEST(Blend, CoverageInIntegersEqualsTheBlendInDouble) {
   Image a(256, 256), b(256, 256);
   for (int y = 0; y < 256; ++y)
