@@ -56,6 +56,7 @@ class BatchWorker {
     return queue_.size();
   }
   // Nothing queued or in process (or stopped on an error); cheap enough to ask every step.
+  // Rethrows nothing: the next push or finish does.
   bool idle() {
     std::lock_guard lock(mutex_);
     return (queue_.empty() && !busy_) || done_;
@@ -67,13 +68,6 @@ class BatchWorker {
     }
     changed_.notify_all();
   }
-  // Until nothing is queued or in process (or the worker has stopped on an error); any
-  // number of threads may wait at once. Rethrows nothing: the next push or finish does.
-  void wait_drained() {
-    std::unique_lock lock(mutex_);
-    changed_.wait(lock, [&] { return (queue_.empty() && !busy_) || done_; });
-  }
-
   void finish() {
     {
       std::lock_guard lock(mutex_);
