@@ -68,6 +68,12 @@ if [ "$(nproc)" -ge 2 ]; then
       echo "FAIL bound_threads: with $bind the two threads shared $places place(s)"; fail=$((fail + 1)); fi
   done
 fi
+# A thread limit below --threads (OMP_THREAD_LIMIT) gives a smaller team: the run still
+# completes, to the same numbers as one thread.
+check thread_limit 0 'mu_global' -- env OMP_THREAD_LIMIT=1 "$bin" run "$work/two.toml" --out "$work/limited" -q --threads 2
+a=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two/summary.json")
+b=$(grep -E '"(H_cm|L_cm|steps)"' "$work/limited/summary.json" 2>/dev/null)
+[ "$a" = "$b" ] || { echo "FAIL thread_limit: summary differs from one thread's"; fail=$((fail + 1)); }
 # The resolved scene runs again to the same summary numbers.
 check resolved 0 'mu_global' -- "$bin" run "$work/two/scene.resolved.toml" --out "$work/two_again" -q --threads 2
 a=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two/summary.json")

@@ -1,6 +1,8 @@
 // Contact search and contact history (SPEC §2, §5): the cell grid + Verlet list finds exactly
 // the brute-force pair set; history survives rebuilds; results do not depend on the skin or on
 // the thread count (every per-disc sum runs in (i, j) order).
+#include <omp.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -174,6 +176,28 @@ void expect_identical(const Particles& a, const Particles& b, const char* what) 
 
 TEST(Determinism, BitIdenticalAcrossThreadCounts) {
   expect_identical(flow(0.2, 1, 3.0), flow(0.2, 2, 3.0), "1 vs 2 threads");
+}
+
+// OpenMP may give a smaller team than asked (OMP_THREAD_LIMIT=1 in the environment, or a run
+// started inside another parallel region): every block of the lists and of the step must still
+// be computed, by the threads there are, to the same bits.
+TEST(Determinism, BitIdenticalWhenOpenMPGivesFewerThreadsThanAsked) {
+  const Particles one = flow(0.2, 1, 2.0);
+  struct OneThreadTeams {  // no region is active, so every team has one thread
+    int levels = omp_get_max_active_levels();
+    OneThreadTeams() { omp_set_max_active_levels(0); }
+    ~OneThreadTeams() { omp_set_max_active_levels(levels); }
+  };
+  Particles limited;
+  {
+    const OneThreadTeams guard;
+    int team = 0;
+#pragma omp parallel num_threads(2)
+    team = omp_get_num_threads();
+    ASSERT_EQ(team, 1) << "the test's premise: OpenMP gives one thread of two asked";
+    limited = flow(0.2, 2, 2.0);
+  }
+  expect_identical(one, limited, "1 thread vs 2 asked and 1 given");
 }
 
 // Fewer discs than a window of lanes, and not a whole slice: the second thread's block is

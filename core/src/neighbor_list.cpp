@@ -20,6 +20,15 @@ inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T)
           static_cast<std::int32_t>(std::int64_t(n) * (t + 1) / T)};
 }
 
+// body(t) for each of `blocks` blocks, on a team of up to as many threads. OpenMP may give a
+// smaller team than asked (OMP_THREAD_LIMIT, a nested region): each member then takes the
+// blocks t = its number, + team, ..., so every block's buffers are filled whatever the team.
+template <class Body>
+void each_block(int blocks, const Body& body) {
+#pragma omp parallel num_threads(blocks)
+  for (int t = omp_get_thread_num(); t < blocks; t += omp_get_num_threads()) body(t);
+}
+
 // Copies the history of pairs listed before into the new list, `width` columns per contact.
 // Both lists are sorted by (first, second) within a row; rows are per first index. A list of
 // another width (a checkpoint of other laws) carries nothing.
@@ -121,10 +130,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     for (std::int32_t k = 0; k < n; ++k)
       if (p.radius[k] <= fine_limit) fine_radius = std::max(fine_radius, p.radius[k]);
     thread_j_.resize(threads);
-#pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      const auto [lo, hi] = block(n, t, omp_get_num_threads());
+    each_block(threads, [&](int t) {
+      const auto [lo, hi] = block(n, t, threads);
       auto& out = thread_j_[t];  // (lower, higher) index pairs, flattened
       std::size_t found = 0;
       // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
@@ -168,18 +175,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         }
       }
       out.resize(found);
-    }
+    });
     // Binned by a counting sort in parallel: each thread counts its pairs per row, each row's
     // start is the sum over threads, and each thread writes its pairs from its own offset in
     // the row (the rows are sorted after, so the order of the writes does not matter).
     thread_count_.resize(threads);
-#pragma omp parallel num_threads(threads)
-    {
-      auto& count = thread_count_[omp_get_thread_num()];
+    each_block(threads, [&](int t) {
+      auto& count = thread_count_[t];
       count.assign(static_cast<std::size_t>(n), 0);
-      const auto& found = thread_j_[omp_get_thread_num()];
+      const auto& found = thread_j_[t];
       for (std::size_t q = 0; q < found.size(); q += 2) ++count[found[q]];
-    }
+    });
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int32_t r = 0; r < n; ++r) {
       std::int32_t len = 0;
@@ -199,12 +205,11 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         at += c;
       }
     }
-#pragma omp parallel num_threads(threads)
-    {
-      auto& cursor = thread_count_[omp_get_thread_num()];
-      const auto& found = thread_j_[omp_get_thread_num()];
+    each_block(threads, [&](int t) {
+      auto& cursor = thread_count_[t];
+      const auto& found = thread_j_[t];
       for (std::size_t q = 0; q < found.size(); q += 2) pairs.j[cursor[found[q]]++] = found[q + 1];
-    }
+    });
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int32_t i = 0; i < n; ++i) {
       // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
@@ -232,10 +237,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     }
     thread_walls_.resize(threads);
     wall_margin_.resize(static_cast<std::size_t>(n));
-#pragma omp parallel num_threads(threads)
-    {
-      const int t = omp_get_thread_num();
-      const auto [lo, hi] = block(n, t, omp_get_num_threads());
+    each_block(threads, [&](int t) {
+      const auto [lo, hi] = block(n, t, threads);
       auto& out = thread_walls_[t];
       out.clear();
       for (std::int32_t k = lo; k < hi; ++k) {
@@ -269,7 +272,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         }
         wall_margin_[k] = margin;
       }
-    }
+    });
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
     walls.segment.clear();
     for (int t = 0; t < threads; ++t)
