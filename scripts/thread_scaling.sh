@@ -14,4 +14,5 @@ done
 import statistics as s
 a=[float(x) for x in '${one[*]}'.split()]; b=[float(x) for x in '${two[*]}'.split()]
 print(f'medians: 1 thread {s.median(a):.3g}, 2 threads {s.median(b):.3g} particle-steps/s')
+print(f'median of the rounds\' two/one: {s.median([y/x for x, y in zip(a, b)]):.2f}')
 print(f'two/one: {s.median(b)/s.median(a):.2f}')"

@@ -1,0 +1,72 @@
+// The most a two-thread step can gain on this machine: a fixed amount of pure arithmetic per
+// step, run on one thread, then split exactly in half over two threads that meet once a step at
+// an OpenMP parallel region (as runout's step does), alternating in rounds. No data crosses
+// between the threads, so whatever the ratio falls short of 2 is the host's (the hypervisor
+// taking a vCPU away, one vCPU slower than the other) plus the fork and join.
+// docs/performance.md, issue 11 twelfth session.
+//   g++ -O2 -fopenmp scripts/lockstep_bench.cpp -o /tmp/lockstep
+//   GOMP_SPINCOUNT=2000 /tmp/lockstep [STEP_US=75] [STEPS=20000] [ROUNDS=7]
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+// Two independent multiply-add chains: `iterations` of them take a fixed time on one core.
+double arithmetic(long iterations, double seed) {
+  double a = seed, d = 0.5 * seed;
+  for (long i = 0; i < iterations; ++i) {
+    a = a * 1.0000001 + 1e-9;
+    d = d * 0.9999999 + 1e-9;
+  }
+  return a + d;
+}
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double step_us = argc > 1 ? std::atof(argv[1]) : 75.0;  // the one-thread step
+  const int steps = argc > 2 ? std::atoi(argv[2]) : 20000;
+  const int rounds = argc > 3 ? std::atoi(argv[3]) : 7;
+  constexpr long kCalibration = 20000000;
+  auto t0 = Clock::now();
+  volatile double sink = arithmetic(kCalibration, 1.0);
+  const long iterations = static_cast<long>(step_us * kCalibration / (seconds_since(t0) * 1e6));
+  std::vector<double> one, two, ratio;
+  for (int r = 0; r < rounds; ++r) {
+    double out[2] = {0, 0};
+    t0 = Clock::now();
+    for (int k = 0; k < steps; ++k) {
+#pragma omp parallel num_threads(1)
+      out[0] += arithmetic(iterations, 1.0 + k * 1e-12);
+    }
+    one.push_back(seconds_since(t0) / steps * 1e6);
+    t0 = Clock::now();
+    for (int k = 0; k < steps; ++k) {
+#pragma omp parallel num_threads(2)
+      out[omp_get_thread_num()] += arithmetic(iterations / 2, 1.0 + k * 1e-12);
+    }
+    two.push_back(seconds_since(t0) / steps * 1e6);
+    ratio.push_back(one.back() / two.back());
+    sink = out[0] + out[1];
+    std::printf("round %d: 1 thread %.1f us a step, 2 threads %.1f us a step, two/one %.2f\n",
+                r + 1, one.back(), two.back(), ratio.back());
+  }
+  std::printf("medians: 1 thread %.1f us, 2 threads %.1f us; two/one %.2f (median of rounds %.2f)\n",
+              median(one), median(two), median(one) / median(two), median(ratio));
+  return sink > 0 ? 0 : 1;
+}
