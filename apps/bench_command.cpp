@@ -30,9 +30,10 @@ int bench_command(const BenchOptions& o) {
   if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);
   const double t_star_start = world.time() / setup.unit_time;
   const StepProfile before = world.profile();
-  const auto t0 = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   for (long long s = 0; s < o.steps; ++s) world.step();
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
   const StepProfile& after = world.profile();
   const double n = static_cast<double>(world.particles().size());
   std::printf("scene: %s\n", scene.name.c_str());

@@ -4,8 +4,6 @@
 #include <signal.h>
 
 #include <atomic>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -29,8 +27,6 @@
 namespace runout::app {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Writes OUT/checkpoint.bin at its schedule, keeping the one before (run_folder.hpp).
 class CheckpointWriter : public Observer {

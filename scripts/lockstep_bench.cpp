@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
   const double step_us = argc > 1 ? std::atof(argv[1]) : 75.0;  // the one-thread step
   const int steps = argc > 2 ? std::atoi(argv[2]) : 20000;
   const int rounds = argc > 3 ? std::atoi(argv[3]) : 7;
+  if (!(step_us > 0) || steps < 1 || rounds < 1) {
+    std::fprintf(stderr, "usage: lockstep [STEP_US > 0] [STEPS >= 1] [ROUNDS >= 1]\n");
+    return 2;
+  }
   constexpr long kCalibration = 20000000;
   auto t0 = Clock::now();
   volatile double sink = arithmetic(kCalibration, 1.0);
