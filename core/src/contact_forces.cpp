@@ -165,20 +165,20 @@ struct Kernel {
   }
 };
 
-// Runs a kernel over contacts [lo, hi) of `count`, whose ends are block ends (kLedgerBlock).
+// Runs a kernel over contacts [lo, hi) of `count`, whose ends are ends of blocks of `block`.
 // With the ledger, each block's sums go to blocks[b] and are added in block order after every
 // thread is done (LedgerBlocks::total), so they are the same bits whatever the thread count and
 // however the blocks are shared (a resumed run may use another count, SPEC §8).
 template <class Kernel>
 PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
-                    PassSums* blocks) {
+                    PassSums* blocks, std::int64_t block) {
   if (!ledger) return kernel(lo, hi);
   PassSums worst;
   // An empty range may start at the contact count, inside the last block: that block is
   // another thread's.
   if (lo >= hi) return worst;
-  for (std::int64_t b = lo / kLedgerBlock; b * kLedgerBlock < hi; ++b) {
-    blocks[b] = kernel(b * kLedgerBlock, std::min(hi, (b + 1) * kLedgerBlock));
+  for (std::int64_t b = lo / block; b * block < hi; ++b) {
+    blocks[b] = kernel(b * block, std::min(hi, (b + 1) * block));
     worst.worst = std::max(worst.worst, blocks[b].worst);
   }
   return worst;
@@ -208,8 +208,10 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
                                               walls.torque.data()};
-  const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data());
-  const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data());
+  const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data(),
+                                kPairLedgerBlock);
+  const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data(),
+                                kWallLedgerBlock);
   return a + b;
 }
 
@@ -234,14 +236,15 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
                            std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n) {
   // The contacts of the block's rows, both ends moved to the next block end: the block ends
   // of consecutive disc blocks meet, so every contact is taken once.
-  auto at = [&](const std::vector<std::int32_t>& row_start, std::int64_t disc, std::int64_t count) {
+  auto at = [&](const std::vector<std::int32_t>& row_start, std::int64_t disc, std::int64_t count,
+                std::int64_t block) {
     if (disc >= n) return count;
     const std::int64_t q = row_start.empty() ? 0 : row_start[disc];
-    return std::min(count, (q + kLedgerBlock - 1) / kLedgerBlock * kLedgerBlock);
+    return std::min(count, (q + block - 1) / block * block);
   };
   const auto np = static_cast<std::int64_t>(pairs.size()), nw = static_cast<std::int64_t>(walls.size());
-  return {at(pairs.row_start, disc_lo, np), at(pairs.row_start, disc_hi, np),
-          at(walls.row_start, disc_lo, nw), at(walls.row_start, disc_hi, nw)};
+  return {at(pairs.row_start, disc_lo, np, kPairLedgerBlock), at(pairs.row_start, disc_hi, np, kPairLedgerBlock),
+          at(walls.row_start, disc_lo, nw, kWallLedgerBlock), at(walls.row_start, disc_hi, nw, kWallLedgerBlock)};
 }
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
@@ -274,9 +277,9 @@ ContactEnergy contact_energy(const StepContext& step, const Particles& p,
 namespace runout {
 
 void LedgerBlocks::size_for(const PairContacts& pairs, const WallContacts& walls) {
-  auto blocks = [](std::size_t count) { return (count + kLedgerBlock - 1) / kLedgerBlock; };
-  this->pairs.resize(blocks(pairs.size()));
-  this->walls.resize(blocks(walls.size()));
+  auto blocks = [](std::size_t count, std::int64_t block) { return (count + block - 1) / block; };
+  this->pairs.resize(blocks(pairs.size(), kPairLedgerBlock));
+  this->walls.resize(blocks(walls.size(), kWallLedgerBlock));
 }
 
 PassSums LedgerBlocks::total() const {

@@ -188,7 +188,7 @@ void World::find_handoff() {
     for (std::int64_t q = r.wall_lo; q < r.wall_hi; ++q)
       reach = std::max<std::int64_t>(reach, wall_contacts_.disc[q] + 1);
     // A whole ledger block, so the ledger's blocks are each computed in one piece.
-    handoff_.boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / kLedgerBlock * kLedgerBlock));
+    handoff_.boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / kPairLedgerBlock * kPairLedgerBlock));
     reached = std::max(reached, reach);
   }
   handoff_.lists = lists_version_;
