@@ -233,8 +233,16 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
     // for the groups' bound (ListDrift; a block is whole groups).
     static_assert(DiscRuns::kWindow % ListDrift::kGroup == 0);
     watched = watch_groups_ && drift_.found();
-    PassSums part[kMaxThreads];
-    phases::Motion moved[kMaxThreads];
+    // Each block's outcome on a cache line of its own, a handful on the stack: arrays of
+    // kMaxThreads (20 KB set every pass) pushed the step's own data out of L1.
+    struct alignas(64) Outcome {
+      PassSums sums;
+      phases::Motion motion;
+    };
+    constexpr int kOnStack = 8;
+    Outcome on_stack[kOnStack];
+    std::vector<Outcome> on_heap(T > kOnStack ? static_cast<std::size_t>(T) : 0);
+    Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
     // Each thread's time is counted from the region's start, so the balancer also weighs how
     // late a thread starts (waking the team costs the later threads a few microseconds a step):
     // it then evens out when the threads finish, not only how long they compute.
@@ -244,9 +252,9 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
       const auto counted_from = together ? region_start : start;
       const ContactRange& r = handoff_.range[t];
       const std::int64_t split = handoff_.boundary_pair[t];
-      if (forces) part[t] = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+      if (forces) out[t].sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
       ready_.flag[t].pass.store(pass, std::memory_order_release);
-      if (forces) part[t].worst = std::max(part[t].worst, contacts(r.pair_lo, split, 0, 0).worst);
+      if (forces) out[t].sums.worst = std::max(out[t].sums.worst, contacts(r.pair_lo, split, 0, 0).worst);
       if (t == 0) forces_seconds = seconds_since(start);
       // First the discs no earlier thread's contacts reach, then (once those are done) the rest.
       const std::int64_t mid = handoff_.first_free[t];
@@ -258,7 +266,7 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
         for (int spins = 0; ready_.flag[u].pass.load(std::memory_order_acquire) != pass; ++spins)
           if (spins > 4096) std::this_thread::yield();
       const auto resumed = Clock::now();
-      moved[t] = phases::Motion::merge(motion_of(b[t], mid), late);
+      out[t].motion = phases::Motion::merge(motion_of(b[t], mid), late);
       if (watched)
         drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
                        static_cast<std::size_t>(b[t]), static_cast<std::size_t>(b[t + 1]));
@@ -274,8 +282,8 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
         for (int t = 0; t < T; ++t) share(t, false);
     }
     for (int t = 0; t < T; ++t) {
-      sums.worst = std::max(sums.worst, part[t].worst);
-      motion = t == 0 ? moved[0] : phases::Motion::merge(motion, moved[t]);
+      sums.worst = std::max(sums.worst, out[t].sums.worst);
+      motion = t == 0 ? out[0].motion : phases::Motion::merge(motion, out[t].motion);
     }
     blocks_.after_step(pairs_, wall_contacts_, runs_);
   }
