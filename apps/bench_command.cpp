@@ -29,13 +29,43 @@ int bench_command(const BenchOptions& o) {
   for (long long s = 0; s < warmup; ++s) world.step();
   if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);
   const double t_star_start = world.time() / setup.unit_time;
-  const StepProfile before = world.profile();
+  // Each thread count's steps, time and profile. With --against-threads the two counts take
+  // turns of turn_steps steps until each has run o.steps, so both sample the same stretch of
+  // the flow and the same minutes of the host (the physics is the same bits at any count).
+  struct Tally {
+    int threads = 1;
+    long long steps = 0;
+    double seconds = 0;
+    StepProfile profile;
+  };
+  Tally mine, other;
+  mine.threads = o.threads;
+  other.threads = o.against_threads;
   using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  for (long long s = 0; s < o.steps; ++s) world.step();
-  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
-  const StepProfile& after = world.profile();
+  auto run_turn = [&](Tally& tally, long long steps) {
+    world.set_threads(tally.threads);
+    const StepProfile before = world.profile();
+    const auto t0 = Clock::now();
+    for (long long s = 0; s < steps; ++s) world.step();
+    tally.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    tally.steps += steps;
+    const StepProfile& after = world.profile();
+    tally.profile.contact_forces += after.contact_forces - before.contact_forces;
+    tally.profile.integrate += after.integrate - before.integrate;
+    tally.profile.rebuild += after.rebuild - before.rebuild;
+    tally.profile.rebuilds += after.rebuilds - before.rebuilds;
+  };
+  if (o.against_threads > 0) {
+    while (mine.steps < o.steps) {
+      const long long turn = std::min(o.turn_steps, o.steps - mine.steps);
+      run_turn(mine, turn);
+      run_turn(other, turn);
+    }
+  } else {
+    run_turn(mine, o.steps);
+  }
   const double n = static_cast<double>(world.particles().size());
+  const double secs = mine.seconds;
   std::printf("scene: %s\n", scene.name.c_str());
   std::printf("discs: %.0f\n", n);
   std::printf("threads: %d\n", o.threads);
@@ -43,11 +73,20 @@ int bench_command(const BenchOptions& o) {
   std::printf("steps: %lld\n", o.steps);
   std::printf("seconds: %.4f\n", secs);
   std::printf("pairs_listed_per_disc: %.3f\n", world.pairs().size() / n);
-  std::printf("rebuilds: %lld\n", static_cast<long long>(after.rebuilds - before.rebuilds));
-  std::printf("share_contact_forces: %.3f\n", (after.contact_forces - before.contact_forces) / secs);
-  std::printf("share_integrate: %.3f\n", (after.integrate - before.integrate) / secs);
-  std::printf("share_rebuild: %.3f\n", (after.rebuild - before.rebuild) / secs);
+  std::printf("rebuilds: %lld\n", static_cast<long long>(mine.profile.rebuilds));
+  std::printf("share_contact_forces: %.3f\n", mine.profile.contact_forces / secs);
+  std::printf("share_integrate: %.3f\n", mine.profile.integrate / secs);
+  std::printf("share_rebuild: %.3f\n", mine.profile.rebuild / secs);
   std::printf("particle_steps_per_second: %.0f\n", n * o.steps / secs);
+  if (o.against_threads > 0) {
+    std::printf("turn_steps: %lld\n", o.turn_steps);
+    std::printf("against_threads: %d\n", other.threads);
+    std::printf("against_steps: %lld\n", other.steps);
+    std::printf("against_seconds: %.4f\n", other.seconds);
+    std::printf("against_particle_steps_per_second: %.0f\n", n * other.steps / other.seconds);
+    // The rate at --threads over the rate at --against-threads.
+    std::printf("speedup: %.3f\n", other.seconds / secs);
+  }
   return 0;
 }
 

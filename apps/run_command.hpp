@@ -34,6 +34,10 @@ struct BenchOptions {
   long long steps = 20000;
   long long warmup_steps = -1;  // -1: run to t* = 5 after release first; 0: none
   int threads = 1;
+  // > 0: time this thread count too, in turns with `threads` every `turn_steps` steps of the
+  // same run, so a host whose speed drifts over seconds slows both alike (docs/performance.md).
+  int against_threads = 0;
+  long long turn_steps = 1000;
   std::string cache_dir;
   std::vector<std::string> overrides;
   long long frames = 0;  // > 0: time this many frames of drawing, PNG and video instead

@@ -109,6 +109,10 @@ check wall_inside 1 'noside.toml: walls\[0\].inside: is required' -- "$bin" run 
 # bench: --warmup-steps 0 means no warm-up (it used to mean the default, to t* = 5).
 check bench_no_warmup 0 't_star_start: 0.000' -- "$bin" bench --scene "$work/two.toml" --steps 10 --warmup-steps 0
 check bench_warmup 0 't_star_start: 5.0' -- "$bin" bench --scene "$work/two.toml" --steps 10
+# Two thread counts in turns of 3 steps: each runs all 10 (3 + 3 + 3 + 1), and the speedup is printed.
+check bench_turns 0 'against_steps: 10' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
+check bench_speedup 0 'speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
+check bench_bad_against 2 'against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --against-threads 0
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
