@@ -78,11 +78,12 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--warmup-steps", bench.warmup_steps, "steps after release before timing (default: to t* = 5)")
       ->check(CLI::Range(0LL, 100000000LL));
   bench_cmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::Range(1, 256));
-  bench_cmd->add_option("--against-threads", bench.against_threads,
-                        "also time this thread count, taking turns with --threads in the same run (prints speedup)")
-      ->check(CLI::Range(1, 256));
+  auto* against = bench_cmd->add_option("--against-threads", bench.against_threads,
+                                        "also time this thread count, taking turns with --threads in the same run (prints speedup)")
+                      ->check(CLI::Range(1, 256));
   bench_cmd->add_option("--turn-steps", bench.turn_steps, "steps of one turn with --against-threads (default 1000)")
-      ->check(CLI::Range(1LL, 100000000LL));
+      ->check(CLI::Range(1LL, 100000000LL))
+      ->needs(against);
   bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
   bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   bench_cmd->add_option("--frames", bench.frames, "time drawing, PNG and video of this many frames instead")

@@ -243,8 +243,10 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
     return std::min(count, (q + block - 1) / block * block);
   };
   const auto np = static_cast<std::int64_t>(pairs.size()), nw = static_cast<std::int64_t>(walls.size());
-  return {at(pairs.row_start, disc_lo, np, kPairLedgerBlock), at(pairs.row_start, disc_hi, np, kPairLedgerBlock),
-          at(walls.row_start, disc_lo, nw, kWallLedgerBlock), at(walls.row_start, disc_hi, nw, kWallLedgerBlock)};
+  return {at(pairs.row_start, disc_lo, np, kPairLedgerBlock),
+          at(pairs.row_start, disc_hi, np, kPairLedgerBlock),
+          at(walls.row_start, disc_lo, nw, kWallLedgerBlock),
+          at(walls.row_start, disc_hi, nw, kWallLedgerBlock)};
 }
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
