@@ -34,7 +34,7 @@ void LoadBalance::prepare(const PairContacts& pairs, const WallContacts& walls,
   n_ = n;
   threads_ = threads;
   steps_ = 0;
-  busy_.assign(static_cast<std::size_t>(threads), 0.0);
+  busy_.assign(static_cast<std::size_t>(threads), Busy{});
   speed_.assign(static_cast<std::size_t>(threads), 1.0);
   estimate(pairs, walls, runs);
   place();
@@ -71,11 +71,12 @@ void LoadBalance::after_step(const PairContacts& pairs, const WallContacts& wall
   double sum = 0;
   for (int t = 0; t < threads_; ++t) {
     const double work = work_at(bounds_[t + 1]) - work_at(bounds_[t]);
-    measured[t] = work > 0 && busy_[t] > 0 ? work / busy_[t] : 0.0;
+    const double busy = busy_[static_cast<std::size_t>(t)].seconds;
+    measured[t] = work > 0 && busy > 0 ? work / busy : 0.0;
     sum += measured[t];
   }
   const bool all_measured = std::all_of(measured.begin(), measured.end(), [](double m) { return m > 0; });
-  std::fill(busy_.begin(), busy_.end(), 0.0);
+  std::fill(busy_.begin(), busy_.end(), Busy{});
   if (!all_measured) return;  // an empty block tells nothing of its thread's speed
   // Speeds relative to their mean, halfway from the last estimate to this period's.
   const double mean = sum / threads_;

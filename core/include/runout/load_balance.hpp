@@ -31,7 +31,7 @@ class LoadBalance {
   // a window of lanes (DiscRuns::kWindow).
   const std::vector<std::int64_t>& bounds() const { return bounds_; }
   // Thread t was busy (not waiting) for `seconds` in this step's phase.
-  void record(int t, double seconds) { busy_[static_cast<std::size_t>(t)] += seconds; }
+  void record(int t, double seconds) { busy_[static_cast<std::size_t>(t)].seconds += seconds; }
   // Every kPeriod steps, moves the blocks' ends so each thread's share of the estimated work
   // follows its measured speed (work done per busy second, smoothed over a few periods).
   void after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs);
@@ -47,7 +47,12 @@ class LoadBalance {
   int threads_ = 0, steps_ = 0;
   std::int64_t version_ = 0;
   std::vector<std::int64_t> bounds_;
-  std::vector<double> busy_, speed_;
+  // Each thread's busy time on a cache line of its own: the threads add to theirs every step.
+  struct alignas(64) Busy {
+    double seconds = 0;
+  };
+  std::vector<Busy> busy_;
+  std::vector<double> speed_;
   std::vector<std::int64_t> work_before_;  // estimated work before each window
 };
 
