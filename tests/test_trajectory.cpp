@@ -51,5 +51,26 @@ TEST(Trajectory, SmallPileHashIsTheStoredOneAtOneAndTwoThreads) {
   EXPECT_EQ(one, stored) << "the physics changed: if on purpose, regenerate " << path;
 }
 
+// More threads than World keeps block outcomes for on the stack (8): the same bits as one.
+// The world is stepped directly (a run's thread governor may drop threads that take turns on
+// a 2-core machine), from the released small pile, for 300 steps.
+TEST(Trajectory, NineThreadsStepLikeOne) {
+  SceneDef s = testing::small_pile();
+  const SceneSetup setup = derive_setup(s);
+  World base = build_settled_pile(s, setup, 2);
+  release(base, setup);
+  World one = base, nine = base;
+  one.set_threads(1);
+  nine.set_threads(9);
+  ASSERT_EQ(nine.settings().threads, 9);
+  for (int k = 0; k < 300; ++k) {
+    one.step();
+    nine.step();
+  }
+  for (const auto member : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::omega})
+    EXPECT_EQ(one.particles().*member, nine.particles().*member);
+  EXPECT_NE(nine.particles().x, base.particles().x);  // the pile moved
+}
+
 }  // namespace
 }  // namespace runout
