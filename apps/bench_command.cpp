@@ -84,6 +84,10 @@ int bench_command(const BenchOptions& o) {
     std::printf("against_steps: %lld\n", other.steps);
     std::printf("against_seconds: %.4f\n", other.seconds);
     std::printf("against_particle_steps_per_second: %.0f\n", n * other.steps / other.seconds);
+    std::printf("against_rebuilds: %lld\n", static_cast<long long>(other.profile.rebuilds));
+    std::printf("against_share_contact_forces: %.3f\n", other.profile.contact_forces / other.seconds);
+    std::printf("against_share_integrate: %.3f\n", other.profile.integrate / other.seconds);
+    std::printf("against_share_rebuild: %.3f\n", other.profile.rebuild / other.seconds);
     // The rate at --threads over the rate at --against-threads.
     std::printf("speedup: %.3f\n", other.seconds / secs);
   }

@@ -4,14 +4,20 @@
 // between the threads, so whatever the ratio falls short of 2 is the host's (the hypervisor
 // taking a vCPU away, one vCPU slower than the other) plus the fork and join.
 // docs/performance.md, issue 11 twelfth session.
+// KIND picks the arithmetic: `chains` (two dependent multiply-add chains: bound by latency, so
+// it barely notices a sibling hyperthread of the host running beside it), `ports` (sixteen
+// independent chains: bound by the core's execution ports, as runout's kernels are) or
+// `stream` (a kick-drift over each thread's own L2-resident arrays of 3,500 discs: loads,
+// stores and arithmetic). Issue 11, sixteenth session.
 //   g++ -O2 -fopenmp scripts/lockstep_bench.cpp -o /tmp/lockstep
-//   GOMP_SPINCOUNT=2000 /tmp/lockstep [STEP_US=75] [STEPS=20000] [ROUNDS=7]
+//   GOMP_SPINCOUNT=2000 /tmp/lockstep [STEP_US=75] [STEPS=20000] [ROUNDS=7] [KIND=chains]
 #include <omp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 namespace {
@@ -24,6 +30,37 @@ double arithmetic(long iterations, double seed) {
     d = d * 0.9999999 + 1e-9;
   }
   return a + d;
+}
+
+// Sixteen independent chains: enough in flight to keep the floating-point ports busy.
+double ports(long iterations, double seed) {
+  double a[16];
+  for (int c = 0; c < 16; ++c) a[c] = seed + c;
+  for (long i = 0; i < iterations / 16; ++i)
+    for (int c = 0; c < 16; ++c) a[c] = a[c] * 1.0000001 + 1e-9;
+  double sum = 0;
+  for (int c = 0; c < 16; ++c) sum += a[c];
+  return sum;
+}
+
+// A kick-drift over one thread's own discs, SoA, sized as the bench pile (3,500 discs).
+struct Discs {
+  static constexpr long kCount = 3500;
+  std::vector<double> x, y, vx, vy, fx, fy, inv_mass;
+  Discs() : x(kCount, 1.0), y(kCount, 2.0), vx(kCount, 0.1), vy(kCount, 0.2), fx(kCount, 1e-3),
+            fy(kCount, -1e-3), inv_mass(kCount, 0.5) {}
+};
+double stream(Discs& d, long iterations, double seed) {
+  const double dt = 1e-6 * seed;
+  long k = 0;
+  for (long i = 0; i < iterations; ++i) {
+    d.vx[k] += dt * d.fx[k] * d.inv_mass[k];
+    d.vy[k] += dt * (d.fy[k] * d.inv_mass[k] - 9.81);
+    d.x[k] += dt * d.vx[k];
+    d.y[k] += dt * d.vy[k];
+    if (++k == Discs::kCount) k = 0;
+  }
+  return d.x[0] + d.y[Discs::kCount - 1];
 }
 
 using Clock = std::chrono::steady_clock;
@@ -46,10 +83,19 @@ int main(int argc, char** argv) {
   const double step_us = argc > 1 ? std::atof(argv[1]) : 75.0;  // the one-thread step
   const int steps = argc > 2 ? std::atoi(argv[2]) : 20000;
   const int rounds = argc > 3 ? std::atoi(argv[3]) : 7;
-  if (!(step_us > 0) || steps < 1 || rounds < 1) {
-    std::fprintf(stderr, "usage: lockstep [STEP_US > 0] [STEPS >= 1] [ROUNDS >= 1]\n");
+  const char* kind = argc > 4 ? argv[4] : "chains";
+  const bool known = !std::strcmp(kind, "chains") || !std::strcmp(kind, "ports") || !std::strcmp(kind, "stream");
+  if (!(step_us > 0) || steps < 1 || rounds < 1 || !known) {
+    std::fprintf(stderr, "usage: lockstep [STEP_US > 0] [STEPS >= 1] [ROUNDS >= 1] [KIND=chains|ports|stream]\n");
     return 2;
   }
+  // One thread's work takes the whole step; two threads take half each, on discs of their own.
+  Discs discs[2];
+  auto arithmetic = [&](long iterations, double seed) {
+    if (!std::strcmp(kind, "ports")) return ports(iterations, seed);
+    if (!std::strcmp(kind, "stream")) return stream(discs[omp_get_thread_num()], iterations, seed);
+    return ::arithmetic(iterations, seed);
+  };
   constexpr long kCalibration = 20000000;
   auto t0 = Clock::now();
   volatile double sink = arithmetic(kCalibration, 1.0);
