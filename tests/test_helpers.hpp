@@ -64,4 +64,12 @@ inline SceneDef small_pile() {
   return s;
 }
 
+// A pile of some 300 discs: enough that two or three threads' blocks each hold several
+// windows of discs and pairs cross from one block to the next (World's Handoff).
+inline SceneDef medium_pile() {
+  SceneDef s = small_pile();
+  s.avalanche = short_avalanche(12.0, 10.0, 40.0, 30.0, 150);
+  return s;
+}
+
 }  // namespace runout::testing

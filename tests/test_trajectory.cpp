@@ -72,5 +72,26 @@ TEST(Trajectory, NineThreadsStepLikeOne) {
   EXPECT_NE(nine.particles().x, base.particles().x);  // the pile moved
 }
 
+// A run whose thread count changes between steps (bench --against-threads, a resumed run's
+// governor) steps like one thread throughout: passes of several threads point the discs' sums
+// at a packed copy of the crossing pushes (Handoff), and a pass of one thread must read them
+// in place again. 300 steps from a released pile of ~300 discs: 2, 1, 3, then 1 thread.
+TEST(Trajectory, ThreadCountChangedBetweenStepsStepsLikeOne) {
+  SceneDef s = testing::medium_pile();
+  const SceneSetup setup = derive_setup(s);
+  World base = build_settled_pile(s, setup, 2);
+  release(base, setup);
+  World one = base, changing = base;
+  one.set_threads(1);
+  for (int k = 0; k < 300; ++k) {
+    if (k % 75 == 0) changing.set_threads(k == 0 ? 2 : k == 150 ? 3 : 1);
+    one.step();
+    changing.step();
+  }
+  for (const auto member : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::omega})
+    EXPECT_EQ(one.particles().*member, changing.particles().*member);
+  EXPECT_NE(changing.particles().x, base.particles().x);  // the pile moved
+}
+
 }  // namespace
 }  // namespace runout

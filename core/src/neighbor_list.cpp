@@ -295,6 +295,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   runs.slice_start.assign(static_cast<size_t>(slices) + 1, 0);
   lane_of_.resize(static_cast<size_t>(n));
   run_length_.resize(static_cast<size_t>(n));
+  runs.incoming.resize(static_cast<size_t>(np));
   thread_count_.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
@@ -355,8 +356,9 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       }
     }
     for (std::int32_t q = row_start[lo]; q < row_start[hi]; ++q) {
-      const std::int32_t k = pairs.j[q];
-      runs.source[slot(k, from_here[k]++)] = np + q;
+      const std::int32_t k = pairs.j[q], at = slot(k, from_here[k]++);
+      runs.source[at] = np + q;
+      runs.incoming[q] = at;
     }
   }
 

@@ -160,41 +160,6 @@ void World::rebuild_lists() {
   ++profile_.rebuilds;
 }
 
-// Each thread's contacts for the current lists and blocks, which of them touch a later block's
-// discs (the boundary ones: with the discs numbered along x, a few rows at the end of the
-// block), and from which disc on each block is reached by no earlier thread.
-void World::find_handoff() {
-  const std::vector<std::int64_t>& b = blocks_.bounds();
-  const auto n = static_cast<std::int64_t>(particles_.size());
-  const int T = static_cast<int>(b.size()) - 1;
-  handoff_.range.resize(static_cast<std::size_t>(T));
-  handoff_.boundary_pair.assign(static_cast<std::size_t>(T), 0);
-  handoff_.first_free.assign(static_cast<std::size_t>(T), 0);
-  std::int64_t reached = 0;  // the end of the discs the threads before t reach
-  for (int t = 0; t < T; ++t) {
-    const ContactRange r = phases::contact_range(pairs_, wall_contacts_, b[t], b[t + 1], n);
-    handoff_.range[t] = r;
-    // Block t's discs below what earlier threads reach wait for them; windows of lanes whole.
-    constexpr std::int64_t W = DiscRuns::kWindow;
-    handoff_.first_free[t] = std::min(b[t + 1], (std::max(b[t], reached) + W - 1) / W * W);
-    std::int64_t first = r.pair_hi, reach = b[t + 1];
-    for (std::int64_t q = r.pair_lo; q < r.pair_hi; ++q)
-      if (pairs_.j[q] >= b[t + 1]) {  // j > i: a pair whose i is beyond the block crosses too
-        first = std::min(first, q);
-        reach = std::max<std::int64_t>(reach, pairs_.j[q] + 1);
-      }
-    // The walls of the range are all computed before the flag; their discs may be beyond the
-    // block where the range's end was moved up to a ledger block's end.
-    for (std::int64_t q = r.wall_lo; q < r.wall_hi; ++q)
-      reach = std::max<std::int64_t>(reach, wall_contacts_.disc[q] + 1);
-    // A whole ledger block, so the ledger's blocks are each computed in one piece.
-    handoff_.boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / kPairLedgerBlock * kPairLedgerBlock));
-    reached = std::max(reached, reach);
-  }
-  handoff_.lists = lists_version_;
-  handoff_.blocks = blocks_.version();
-}
-
 void World::forces_and_motion(bool forces, double kick, double drift) {
   const phases::StepContext ctx{settings_, table_, segments_};
   const auto n = static_cast<std::int64_t>(particles_.size());
@@ -215,6 +180,7 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
   const int T = settings_.threads;
   bool watched = false;  // the groups' displacements were measured in the step's region
   if (T == 1) {
+    handoff_.release(pairs_, runs_, lists_version_);
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()));
     forces_seconds = seconds_since(t0);
     motion = motion_of(0, n);
@@ -225,9 +191,8 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
     // their rows reach its discs (the handoff), and each thread computes those rows first.
     blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
     const std::vector<std::int64_t>& b = blocks_.bounds();
-    if (handoff_.lists != lists_version_ || handoff_.blocks != blocks_.version() ||
-        handoff_.range.size() != static_cast<std::size_t>(T))
-      find_handoff();
+    if (!handoff_.current(lists_version_, blocks_.version(), T))
+      handoff_.find(pairs_, wall_contacts_, runs_, b, lists_version_, blocks_.version());
     const std::int64_t pass = ++passes_;
     // Once the whole flow's bound is spent, each thread measures its own groups' displacements
     // for the groups' bound (ListDrift; a block is whole groups).
@@ -252,12 +217,20 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
       const auto counted_from = together ? region_start : start;
       const ContactRange& r = handoff_.range[t];
       const std::int64_t split = handoff_.boundary_pair[t];
-      if (forces) out[t].sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+      if (forces) {
+        out[t].sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+        handoff_.publish(t, pairs_);
+      }
       ready_.flag[t].pass.store(pass, std::memory_order_release);
       if (forces) out[t].sums.worst = std::max(out[t].sums.worst, contacts(r.pair_lo, split, 0, 0).worst);
       if (t == 0) forces_seconds = seconds_since(start);
       // First the discs no earlier thread's contacts reach, then (once those are done) the rest.
       const std::int64_t mid = handoff_.first_free[t];
+      // The earlier thread's crossing pushes are nearly always ready by now: fetched while
+      // the discs nothing reaches move, they are in this core's cache when their sums need
+      // them (0.2-0.6 us a pass, docs/performance.md, sixteenth session).
+      if (forces && t > 0 && ready_.flag[t - 1].pass.load(std::memory_order_acquire) == pass)
+        handoff_.prefetch(t - 1, pairs_);
       const phases::Motion late = motion_of(mid, b[t + 1]);
       auto busy = seconds_since(counted_from);
       // A short spin (the earlier thread is nearly always done by now), then yielding, so a

@@ -61,6 +61,7 @@ struct DiscRuns {
   std::vector<std::int32_t> slice_start;  // slice g: slots [slice_start[g], slice_start[g + 1])
   std::vector<std::int32_t> source;       // slot -> index into PairContacts::fx, fy, torque
   std::vector<std::int32_t> lane_disc;    // kSlice g + l -> disc of that lane, -1 past the last
+  std::vector<std::int32_t> incoming;     // pair q -> the slot of its push on j (Handoff)
 
   std::size_t slices() const { return slice_start.empty() ? 0 : slice_start.size() - 1; }
 };

@@ -18,6 +18,7 @@
 
 #include "runout/contact/registry.hpp"
 #include "runout/derive.hpp"
+#include "runout/handoff.hpp"
 #include "runout/list_drift.hpp"
 #include "runout/load_balance.hpp"
 #include "runout/neighbor_list.hpp"
@@ -83,11 +84,6 @@ struct LedgerBlocks {
   std::vector<PassSums> pairs, walls;
   void size_for(const PairContacts& pairs, const WallContacts& walls);
   PassSums total() const;  // the largest overlap share and the losses, in block order
-};
-
-// Pairs [pair_lo, pair_hi) and wall contacts [wall_lo, wall_hi): what one thread computes.
-struct ContactRange {
-  std::int64_t pair_lo = 0, pair_hi = 0, wall_lo = 0, wall_hi = 0;
 };
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
@@ -162,7 +158,6 @@ class World {
   // drift x += v drift. One parallel region: each thread takes its block of discs (blocks_)
   // and hands the rows that reach the next block to its thread (Handoff).
   void forces_and_motion(bool forces, double kick, double drift);
-  void find_handoff();
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -199,13 +194,7 @@ class World {
   // Each thread's block of discs for a whole step (load_balance.hpp) and what hands one
   // block's results to the next (World::forces_and_motion).
   LoadBalance blocks_{LoadBalance::Work::step};
-  struct Handoff {
-    std::vector<ContactRange> range;  // thread t's contacts
-    // Thread t computes its pairs from boundary_pair[t] on first: the rows that touch a later
-    // block's discs. Its discs below first_free[t] wait for the earlier threads' such rows.
-    std::vector<std::int64_t> boundary_pair, first_free;
-    std::int64_t lists = -1, blocks = -1;  // the versions they were found for
-  } handoff_;
+  Handoff handoff_;
   std::int64_t lists_version_ = 0;  // counts rebuilds of the lists
   // Per thread: the last pass whose boundary pairs it has computed. Copies start fresh.
   struct ReadyFlags {
