@@ -51,25 +51,38 @@ TEST(Trajectory, SmallPileHashIsTheStoredOneAtOneAndTwoThreads) {
   EXPECT_EQ(one, stored) << "the physics changed: if on purpose, regenerate " << path;
 }
 
+// A settled pile of `scene`, released (prepared with two threads).
+World released_pile(const SceneDef& scene) {
+  const SceneSetup setup = derive_setup(scene);
+  World w = build_settled_pile(scene, setup, 2);
+  release(w, setup);
+  return w;
+}
+
+// Steps `one` at one thread and `other` as `threads_at(step)` says, 300 steps, and checks
+// their discs have the same bits and have moved.
+template <class ThreadsAt>
+void expect_steps_like_one(const World& released, const ThreadsAt& threads_at) {
+  World one = released, other = released;
+  one.set_threads(1);
+  for (int k = 0; k < 300; ++k) {
+    if (const int t = threads_at(k); t > 0) {
+      other.set_threads(t);
+      ASSERT_EQ(other.settings().threads, t);
+    }
+    one.step();
+    other.step();
+  }
+  for (const auto member : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::omega})
+    EXPECT_EQ(one.particles().*member, other.particles().*member);
+  EXPECT_NE(other.particles().x, released.particles().x);  // the pile moved
+}
+
 // More threads than World keeps block outcomes for on the stack (8): the same bits as one.
 // The world is stepped directly (a run's thread governor may drop threads that take turns on
 // a 2-core machine), from the released small pile, for 300 steps.
 TEST(Trajectory, NineThreadsStepLikeOne) {
-  SceneDef s = testing::small_pile();
-  const SceneSetup setup = derive_setup(s);
-  World base = build_settled_pile(s, setup, 2);
-  release(base, setup);
-  World one = base, nine = base;
-  one.set_threads(1);
-  nine.set_threads(9);
-  ASSERT_EQ(nine.settings().threads, 9);
-  for (int k = 0; k < 300; ++k) {
-    one.step();
-    nine.step();
-  }
-  for (const auto member : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::omega})
-    EXPECT_EQ(one.particles().*member, nine.particles().*member);
-  EXPECT_NE(nine.particles().x, base.particles().x);  // the pile moved
+  expect_steps_like_one(released_pile(testing::small_pile()), [](int k) { return k == 0 ? 9 : 0; });
 }
 
 // A run whose thread count changes between steps (bench --against-threads, a resumed run's
@@ -77,20 +90,9 @@ TEST(Trajectory, NineThreadsStepLikeOne) {
 // at a packed copy of the crossing pushes (Handoff), and a pass of one thread must read them
 // in place again. 300 steps from a released pile of ~300 discs: 2, 1, 3, then 1 thread.
 TEST(Trajectory, ThreadCountChangedBetweenStepsStepsLikeOne) {
-  SceneDef s = testing::medium_pile();
-  const SceneSetup setup = derive_setup(s);
-  World base = build_settled_pile(s, setup, 2);
-  release(base, setup);
-  World one = base, changing = base;
-  one.set_threads(1);
-  for (int k = 0; k < 300; ++k) {
-    if (k % 75 == 0) changing.set_threads(k == 0 ? 2 : k == 150 ? 3 : 1);
-    one.step();
-    changing.step();
-  }
-  for (const auto member : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::omega})
-    EXPECT_EQ(one.particles().*member, changing.particles().*member);
-  EXPECT_NE(changing.particles().x, base.particles().x);  // the pile moved
+  expect_steps_like_one(released_pile(testing::medium_pile()), [](int k) {
+    return k % 75 != 0 ? 0 : k == 0 ? 2 : k == 150 ? 3 : 1;
+  });
 }
 
 }  // namespace
