@@ -22,7 +22,8 @@ struct PairContacts {
   int history_width = 0;
   // This step's push of pair q on i at [q], and on j at [size() + q] (the force opposite,
   // the torque the law gives j), so each disc's sum reads one array (DiscRuns); [2 size()]
-  // is always zero.
+  // is always zero. In a pass of several threads a packed copy of the pushes that cross to a
+  // later thread's discs follows it (Handoff).
   std::vector<double> fx, fy, torque;
   std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
   // Row of the contact parameter table (species_i * species_count + species_j), set with the
