@@ -83,22 +83,26 @@ int main(int argc, char** argv) {
   const double step_us = argc > 1 ? std::atof(argv[1]) : 75.0;  // the one-thread step
   const int steps = argc > 2 ? std::atoi(argv[2]) : 20000;
   const int rounds = argc > 3 ? std::atoi(argv[3]) : 7;
-  const char* kind = argc > 4 ? argv[4] : "chains";
-  const bool known = !std::strcmp(kind, "chains") || !std::strcmp(kind, "ports") || !std::strcmp(kind, "stream");
-  if (!(step_us > 0) || steps < 1 || rounds < 1 || !known) {
+  const char* name = argc > 4 ? argv[4] : "chains";
+  enum class Kind { chains, ports, stream, unknown };
+  const Kind kind = !std::strcmp(name, "chains")   ? Kind::chains
+                    : !std::strcmp(name, "ports")  ? Kind::ports
+                    : !std::strcmp(name, "stream") ? Kind::stream
+                                                   : Kind::unknown;
+  if (!(step_us > 0) || steps < 1 || rounds < 1 || kind == Kind::unknown) {
     std::fprintf(stderr, "usage: lockstep [STEP_US > 0] [STEPS >= 1] [ROUNDS >= 1] [KIND=chains|ports|stream]\n");
     return 2;
   }
   // One thread's work takes the whole step; two threads take half each, on discs of their own.
   Discs discs[2];
-  auto arithmetic = [&](long iterations, double seed) {
-    if (!std::strcmp(kind, "ports")) return ports(iterations, seed);
-    if (!std::strcmp(kind, "stream")) return stream(discs[omp_get_thread_num()], iterations, seed);
-    return ::arithmetic(iterations, seed);
+  auto work = [&](long iterations, double seed) {
+    if (kind == Kind::ports) return ports(iterations, seed);
+    if (kind == Kind::stream) return stream(discs[omp_get_thread_num()], iterations, seed);
+    return arithmetic(iterations, seed);
   };
   constexpr long kCalibration = 20000000;
   auto t0 = Clock::now();
-  volatile double sink = arithmetic(kCalibration, 1.0);
+  volatile double sink = work(kCalibration, 1.0);
   const long iterations = static_cast<long>(step_us * kCalibration / (seconds_since(t0) * 1e6));
   std::vector<double> one, two, ratio;
   for (int r = 0; r < rounds; ++r) {
@@ -106,13 +110,13 @@ int main(int argc, char** argv) {
     t0 = Clock::now();
     for (int k = 0; k < steps; ++k) {
 #pragma omp parallel num_threads(1)
-      out[0].value += arithmetic(iterations, 1.0 + k * 1e-12);
+      out[0].value += work(iterations, 1.0 + k * 1e-12);
     }
     one.push_back(seconds_since(t0) / steps * 1e6);
     t0 = Clock::now();
     for (int k = 0; k < steps; ++k) {
 #pragma omp parallel num_threads(2)
-      out[omp_get_thread_num()].value += arithmetic(iterations / 2, 1.0 + k * 1e-12);
+      out[omp_get_thread_num()].value += work(iterations / 2, 1.0 + k * 1e-12);
     }
     two.push_back(seconds_since(t0) / steps * 1e6);
     ratio.push_back(one.back() / two.back());

@@ -8,9 +8,9 @@
 set -euo pipefail
 B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
 rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null | sed -n 's/^particle_steps_per_second: *//p'; }
+trip() { [ -n "${ROUND_TRIP:-}" ] && "$ROUND_TRIP" | sed -n 's/^round trip: //p'; }
 one=(); two=()
 for i in $(seq "$R"); do
-  trip() { [ -n "${ROUND_TRIP:-}" ] && "$ROUND_TRIP" | sed -n 's/^round trip: //p'; }
   before=$(trip || true)
   a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")
   after=$(trip || true)

@@ -51,7 +51,6 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
   pairs.torque.resize(area + crossing_.size());
   for (std::size_t c = 0; c < crossing_.size(); ++c)
     runs.source[runs.incoming[crossing_[c]]] = static_cast<std::int32_t>(area + c);
-  packed_lists_ = crossing_.empty() ? -1 : lists_version;
   lists_ = lists_version;
   blocks_ = blocks_version;
 }
@@ -81,12 +80,10 @@ void Handoff::prefetch(int t, const PairContacts& pairs) const {
 
 void Handoff::release(const PairContacts& pairs, DiscRuns& runs, std::int64_t lists_version) {
   // Runs of other lists were laid out afresh by their rebuild.
-  if (packed_lists_ == lists_version) {
-    const auto np = static_cast<std::int32_t>(pairs.size());
-    for (const std::int32_t q : crossing_) runs.source[runs.incoming[q]] = np + q;
-    lists_ = -1;  // found again before the next pass of several threads
-  }
-  packed_lists_ = -1;
+  if (lists_ != lists_version) return;
+  const auto np = static_cast<std::int32_t>(pairs.size());
+  for (const std::int32_t q : crossing_) runs.source[runs.incoming[q]] = np + q;
+  lists_ = -1;  // found again before the next pass of several threads
 }
 
 }  // namespace runout

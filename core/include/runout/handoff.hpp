@@ -7,7 +7,8 @@
 // The crossing pushes on j are copied into a packed area at the end of PairContacts' pushes,
 // and those discs' runs read them there: a later thread then pulls a few cache lines written
 // for it alone from the other core, rather than every line of the pushes array holding one
-// (118 crossing pairs on the bench pile: 15 lines an array in place of 37). The copies hold
+// (118 crossing pairs on the bench pile: 118 doubles, ~15 lines an array, where the pushes in
+// place were spread over 37 measured lines). The copies hold
 // the same bits and each run keeps its order, so no sum changes (docs/performance.md, issue 11
 // sixteenth session).
 #pragma once
@@ -57,7 +58,8 @@ class Handoff {
   // crossing_start_[t + 1]), the i-th of them packed at pushes index 2 size() + 1 + i.
   std::vector<std::int32_t> crossing_;
   std::vector<std::int64_t> crossing_start_;
-  std::int64_t packed_lists_ = -1;  // the lists whose runs point at the packed area (-1: none)
+  // The runs of lists_ point at the packed area while lists_ is current and crossing_ is not
+  // empty; release() undoes that and forgets lists_.
 };
 
 }  // namespace runout
