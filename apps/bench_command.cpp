@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <string>
+#include <vector>
 
 #include "pictures.hpp"
 #include "prepare.hpp"
@@ -15,6 +17,67 @@
 #include "runout/setup.hpp"
 
 namespace runout::app {
+
+namespace {
+
+// The host's ceiling (--ceiling): `count` copies of `world`, each stepped at one thread, first
+// one after another, then side by side by as many threads that never meet ("apart"), then side
+// by side meeting after every step as the blocks of a step do ("lockstep"). They share nothing,
+// so what side by side falls short of `count` times is the host's, not runout's
+// (docs/performance.md, issue 11). Each mode starts from `world`'s state, so all three time the
+// same stretch of the flow as the turn of `world` that follows.
+struct Ceiling {
+  long long steps = 0;  // of each copy in each mode
+  double alone = 0, apart = 0, lockstep = 0;  // seconds
+  Ceiling& operator+=(const Ceiling& t) {
+    steps += t.steps; alone += t.alone; apart += t.apart; lockstep += t.lockstep;
+    return *this;
+  }
+};
+
+Ceiling ceiling_turn(const World& world, int count, long long steps) {
+  using Clock = std::chrono::steady_clock;
+  std::vector<World> copies;
+  auto fresh_copies = [&] {
+    copies.assign(static_cast<std::size_t>(count), world);
+    for (World& c : copies) c.set_threads(1);
+  };
+  auto side_by_side = [&](bool meet) {
+    fresh_copies();
+    std::exception_ptr failed;
+    const auto start = Clock::now();
+#pragma omp parallel num_threads(count)
+    {
+      // A smaller team than asked (an OpenMP limit): each member takes every team-th copy.
+      const int team = omp_get_num_threads(), me = omp_get_thread_num();
+      for (long long s = 0; s < steps; ++s) {
+        try {
+          for (int c = me; c < count; c += team) copies[c].step();
+        } catch (...) {
+#pragma omp critical
+          if (!failed) failed = std::current_exception();
+        }
+        if (meet) {
+#pragma omp barrier
+        }
+      }
+    }
+    if (failed) std::rethrow_exception(failed);
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  Ceiling turn;
+  turn.steps = steps;
+  fresh_copies();
+  const auto start = Clock::now();
+  for (World& c : copies)
+    for (long long s = 0; s < steps; ++s) c.step();
+  turn.alone = std::chrono::duration<double>(Clock::now() - start).count();
+  turn.apart = side_by_side(false);
+  turn.lockstep = side_by_side(true);
+  return turn;
+}
+
+}  // namespace
 
 int bench_command(const BenchOptions& o) {
   const std::string source = o.scene_path.empty() ? "<embedded bench scene>" : o.scene_path;
@@ -29,9 +92,10 @@ int bench_command(const BenchOptions& o) {
   for (long long s = 0; s < warmup; ++s) world.step();
   if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);
   const double t_star_start = world.time() / setup.unit_time;
-  // Each thread count's steps, time and profile. With --against-threads the two counts take
-  // turns of turn_steps steps until each has run o.steps, so both sample the same stretch of
-  // the flow and the same minutes of the host (the physics is the same bits at any count).
+  // Each thread count's steps, time and profile. With --against-threads the two counts (and
+  // with --ceiling the copies) take turns of turn_steps steps until each has run o.steps, so
+  // all sample the same stretch of the flow and the same minutes of the host (the physics is
+  // the same bits at any count).
   struct Tally {
     int threads = 1;
     long long steps = 0;
@@ -55,14 +119,13 @@ int bench_command(const BenchOptions& o) {
     tally.profile.rebuild += after.rebuild - before.rebuild;
     tally.profile.rebuilds += after.rebuilds - before.rebuilds;
   };
-  if (o.against_threads > 0) {
-    while (mine.steps < o.steps) {
-      const long long turn = std::min(o.turn_steps, o.steps - mine.steps);
-      run_turn(mine, turn);
-      run_turn(other, turn);
-    }
-  } else {
-    run_turn(mine, o.steps);
+  Ceiling ceiling;
+  while (mine.steps < o.steps) {
+    const bool turns = o.against_threads > 0 || o.ceiling;
+    const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
+    if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn);
+    run_turn(mine, turn);
+    if (o.against_threads > 0) run_turn(other, turn);
   }
   const double n = static_cast<double>(world.particles().size());
   const double secs = mine.seconds;
@@ -90,6 +153,16 @@ int bench_command(const BenchOptions& o) {
     std::printf("against_share_rebuild: %.3f\n", other.profile.rebuild / other.seconds);
     // The rate at --threads over the rate at --against-threads.
     std::printf("speedup: %.3f\n", other.seconds / secs);
+  }
+  if (o.ceiling) {
+    std::printf("ceiling_copies: %d\n", o.threads);
+    std::printf("ceiling_steps: %lld\n", ceiling.steps);
+    std::printf("ceiling_alone_seconds: %.4f\n", ceiling.alone);
+    std::printf("ceiling_apart_seconds: %.4f\n", ceiling.apart);
+    std::printf("ceiling_lockstep_seconds: %.4f\n", ceiling.lockstep);
+    // The copies' steps one after another over side by side: at most `ceiling_copies`.
+    std::printf("ceiling_apart_speedup: %.3f\n", ceiling.alone / ceiling.apart);
+    std::printf("ceiling_lockstep_speedup: %.3f\n", ceiling.alone / ceiling.lockstep);
   }
   return 0;
 }

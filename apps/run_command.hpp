@@ -37,6 +37,9 @@ struct BenchOptions {
   // > 0: time this thread count too, in turns with `threads` every `turn_steps` steps of the
   // same run, so a host whose speed drifts over seconds slows both alike (docs/performance.md).
   int against_threads = 0;
+  // With --threads T: also step T copies of the pile, each at one thread by its own thread,
+  // in turns alone and side by side (the host's ceiling for threads that share nothing).
+  bool ceiling = false;
   long long turn_steps = 1000;
   std::string cache_dir;
   std::vector<std::string> overrides;

@@ -81,9 +81,19 @@ int main(int argc, char** argv) {
   auto* against = bench_cmd->add_option("--against-threads", bench.against_threads,
                                         "also time this thread count, taking turns with --threads in the same run (prints speedup)")
                       ->check(CLI::Range(1, 256));
-  bench_cmd->add_option("--turn-steps", bench.turn_steps, "steps of one turn with --against-threads (default 1000)")
-      ->check(CLI::Range(1LL, 100000000LL))
-      ->needs(against);
+  auto* ceiling = bench_cmd->add_flag(
+      "--ceiling", bench.ceiling,
+      "also time --threads copies of the pile, each stepped by its own thread at one thread, side by side against one "
+      "after another: the speed-up this host gives threads that share nothing (prints ceiling_*)");
+  auto* turns = bench_cmd->add_option("--turn-steps", bench.turn_steps,
+                                      "steps of one turn with --against-threads or --ceiling (default 1000)")
+                    ->check(CLI::Range(1LL, 100000000LL));
+  bench_cmd->callback([&bench, turns, against, ceiling] {
+    if (turns->count() > 0 && against->count() == 0 && ceiling->count() == 0)
+      throw CLI::ValidationError("--turn-steps requires --against-threads or --ceiling");
+    if (bench.ceiling && bench.threads < 2)
+      throw CLI::ValidationError("--ceiling needs --threads 2 or more (the copies stepped side by side)");
+  });
   bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
   bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   bench_cmd->add_option("--frames", bench.frames, "time drawing, PNG and video of this many frames instead")

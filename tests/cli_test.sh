@@ -113,7 +113,11 @@ check bench_warmup 0 't_star_start: 5.0' -- "$bin" bench --scene "$work/two.toml
 check bench_turns 0 'against_steps: 10' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
 check bench_speedup 0 'speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
 check bench_bad_against 2 'against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --against-threads 0
-check bench_turns_alone 2 'turn-steps requires --against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --turn-steps 3
+check bench_turns_alone 2 'turn-steps requires --against-threads or --ceiling' -- "$bin" bench --scene "$work/two.toml" --steps 10 --turn-steps 3
+# --ceiling: the copies run as many steps as the timed world, in turns, and need two threads.
+check bench_ceiling 0 'ceiling_steps: 10' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --turn-steps 3
+check bench_ceiling_speedup 0 'ceiling_lockstep_speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --against-threads 1
+check bench_ceiling_one_thread 2 'ceiling needs --threads 2 or more' -- "$bin" bench --scene "$work/two.toml" --steps 10 --ceiling
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
