@@ -196,13 +196,18 @@ class World {
   LoadBalance blocks_{LoadBalance::Work::step};
   Handoff handoff_;
   std::int64_t lists_version_ = 0;  // counts rebuilds of the lists
-  // Per thread: the last pass whose boundary pairs it has computed. Copies start fresh.
+  // Per thread: the last pass whose boundary pairs it has computed. Copies start fresh, and
+  // so does a world assigned over (a resume, a new pile): its pass count starts again, and a
+  // flag left at a pass it reaches later would let a thread skip its wait.
   struct ReadyFlags {
     struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}; };
     std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
     ReadyFlags() = default;
     ReadyFlags(const ReadyFlags&) : ReadyFlags() {}
-    ReadyFlags& operator=(const ReadyFlags&) { return *this; }
+    ReadyFlags& operator=(const ReadyFlags&) {
+      for (int t = 0; t < kMaxThreads; ++t) flag[t].pass.store(-1, std::memory_order_relaxed);
+      return *this;
+    }
   } ready_;
   std::int64_t passes_ = 0;  // force-and-motion passes taken (the flags' values)
 };
