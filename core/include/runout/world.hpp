@@ -197,8 +197,8 @@ class World {
   Handoff handoff_;
   std::int64_t lists_version_ = 0;  // counts rebuilds of the lists
   // Per thread: the last pass whose boundary pairs it has computed. Copies start fresh, and
-  // so does a world assigned over (a resume, a new pile): its pass count starts again, and a
-  // flag left at a pass it reaches later would let a thread skip its wait.
+  // so does a world assigned over: its pass count is the assigned one's, and a flag left at a
+  // pass it reaches later would let a thread skip its wait.
   struct ReadyFlags {
     struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}; };
     std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
