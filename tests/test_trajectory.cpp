@@ -95,8 +95,8 @@ TEST(Trajectory, ThreadCountChangedBetweenStepsStepsLikeOne) {
   });
 }
 
-// A world assigned over one that has stepped (a resume, the next pile of a study) counts its
-// passes from its own start again. The threads' ready flags must start again too: a flag left
+// A world assigned over one that has stepped at several threads counts its passes from the
+// assigned world's count again. The threads' ready flags must start again too: a flag left
 // at a pass the new world reaches later would let a later block skip its wait for an earlier
 // one. Each cycle leaves flags 2-8 at the pass where 9 threads come back; a skipped wait is a
 // race, so the cycle is repeated (without the reset, 2 of 5 single cycles failed).
