@@ -97,7 +97,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--set", bench.overrides, "override a scene key")->take_all();
   bench_cmd->add_option("--cache-dir", bench.cache_dir, "settled-pile cache (default ~/.cache/runout)");
   bench_cmd->add_option("--frames", bench.frames, "time drawing, PNG and video of this many frames instead")
-      ->check(CLI::Range(1LL, 100000LL));
+      ->check(CLI::Range(1LL, 100000LL))
+      ->excludes(against)
+      ->excludes(ceiling);
   runout::app::add_picture_options(bench_cmd, bench.picture, false);
   bench_cmd->add_option("--preset", bench.picture.preset, "x264 preset for --frames");
   bench_cmd->add_option("--crf", bench.picture.crf, "x264 crf for --frames")->check(CLI::Range(0, 51));

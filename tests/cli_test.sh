@@ -117,6 +117,8 @@ check bench_turns_alone 2 'turn-steps requires --against-threads or --ceiling' -
 # --ceiling: the copies run as many steps as the timed world, in turns, and need two threads.
 check bench_ceiling 0 'ceiling_steps: 10' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --turn-steps 3
 check bench_ceiling_speedup 0 'ceiling_lockstep_speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --against-threads 1
+check bench_frames_not_with_ceiling 2 'ceiling excludes --frames' -- "$bin" bench --scene "$work/two.toml" --threads 2 --frames 1 --ceiling
+check bench_frames_not_with_against 2 'against-threads excludes --frames' -- "$bin" bench --scene "$work/two.toml" --threads 2 --frames 1 --against-threads 1
 check bench_ceiling_one_thread 2 'ceiling needs --threads 2 or more' -- "$bin" bench --scene "$work/two.toml" --steps 10 --ceiling
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
