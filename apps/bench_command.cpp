@@ -120,8 +120,8 @@ int bench_command(const BenchOptions& o) {
     tally.profile.rebuilds += after.rebuilds - before.rebuilds;
   };
   Ceiling ceiling;
+  const bool turns = o.against_threads > 0 || o.ceiling;
   while (mine.steps < o.steps) {
-    const bool turns = o.against_threads > 0 || o.ceiling;
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
     if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn);
     run_turn(mine, turn);
