@@ -33,7 +33,8 @@ class LoadBalance {
   // Thread t was busy (not waiting) for `seconds` in this step's phase.
   void record(int t, double seconds) { busy_[static_cast<std::size_t>(t)].seconds += seconds; }
   // Every kPeriod steps, moves the blocks' ends so each thread's share of the estimated work
-  // follows its measured speed (work done per busy second, smoothed over a few periods).
+  // follows its measured speed (work done per busy second, smoothed over a few periods);
+  // ends that would each move by one window at most stay (jitter, load_balance.cpp).
   void after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs);
   // Changes whenever the blocks move.
   std::int64_t version() const { return version_; }
