@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numeric>
 
@@ -72,155 +73,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   largest_radius_ = 0;
 
   if (n > 0) {
-    // ---- cell grid ----
-    double xmin = p.x[0], xmax = p.x[0], ymin = p.y[0], ymax = p.y[0];
-    double rmin = p.radius[0], rmax = p.radius[0];
-    bool finite = true;  // std::min and std::max pass over a NaN, so it is looked for
-    for (std::int32_t k = 0; k < n; ++k) {
-      finite = finite && std::isfinite(p.x[k]) && std::isfinite(p.y[k]) && std::isfinite(p.radius[k]);
-      xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]);
-      ymin = std::min(ymin, p.y[k]); ymax = std::max(ymax, p.y[k]);
-      rmin = std::min(rmin, p.radius[k]); rmax = std::max(rmax, p.radius[k]);
-    }
-    // Cells sized for the small discs; large discs search a wider stencil, so bidisperse piles
-    // with D/d = 8 do not put hundreds of small discs in one cell.
-    // The world checks its state after every step; this is the last line against a state that
-    // would make the grid meaningless (a NaN or a coordinate beyond ~1e300 m loops or overflows).
-    if (!finite || !std::isfinite(xmax - xmin) || !std::isfinite(ymax - ymin) || !(rmin > 0))
-      throw NumericalError("neighbour search: disc positions or radii are not finite");
-    largest_radius_ = rmax;
-    double cell = std::max(2 * rmin + skin, 1e-12);
-    // Counted in floating point: a stray disc far away must neither overflow nor blow memory.
-    auto cells_along = [&](double lo, double hi) { return std::floor((hi - lo) / cell) + 1; };
-    const double max_cells = std::max(16.0 * n, 1048576.0);
-    while (cells_along(xmin, xmax) * cells_along(ymin, ymax) > max_cells) cell *= 1.5;
-    const auto ncx = static_cast<std::int32_t>(cells_along(xmin, xmax));
-    const auto ncy = static_cast<std::int32_t>(cells_along(ymin, ymax));
-    const double inv_cell = 1.0 / cell;
-
-    disc_cell_.resize(n);
-    cell_start_.assign(static_cast<size_t>(ncx) * ncy + 1, 0);
-    for (std::int32_t k = 0; k < n; ++k) {
-      const auto cx = std::min(ncx - 1, static_cast<std::int32_t>((p.x[k] - xmin) * inv_cell));
-      const auto cy = std::min(ncy - 1, static_cast<std::int32_t>((p.y[k] - ymin) * inv_cell));
-      disc_cell_[k] = cy * ncx + cx;
-      ++cell_start_[disc_cell_[k] + 1];
-    }
-    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
-    cell_disc_.resize(n);
-    disc_place_.resize(n);
-    cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::int32_t k = 0; k < n; ++k) {
-      disc_place_[k] = cursor_[disc_cell_[k]]++;
-      cell_disc_[disc_place_[k]] = k;
-    }
-
-    // ---- disc pairs ----
-    // Each pair is found once. Discs up to 1.5 times the smallest radius (the fine ones: the
-    // small species with its spread) find their fine neighbours with a half stencil: all reach
-    // as far as the largest fine disc, so of two fine discs the one earlier in the grid's order
-    // has the other in its stencil and finds the pair, and scans only the grid after its own
-    // place. A pair with a larger disc is found from the larger one (equal radii: the earlier),
-    // which searches the cells within its own diameter plus the skin: a small disc does not
-    // scan the wide stencil a large neighbour needs (D/d = 8: a fifth of the candidates). The
-    // pairs are then put in the rows of their lower index, each row sorted by j, so the list is
-    // the same as a search from every i would give, whatever the thread count.
-    const double fine_limit = 1.5 * rmin;
-    double fine_radius = rmin;  // the largest fine radius
-    for (std::int32_t k = 0; k < n; ++k)
-      if (p.radius[k] <= fine_limit) fine_radius = std::max(fine_radius, p.radius[k]);
-    thread_j_.resize(threads);
-    each_block(threads, [&](int t) {
-      const auto [lo, hi] = block(n, t, threads);
-      auto& out = thread_j_[t];  // (lower, higher) index pairs, flattened
-      std::size_t found = 0;
-      // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
-      // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
-      // A grid row's cells are contiguous in cell_disc_, so each row is one run of discs.
-      auto cell_of = [&](double v, double v0, std::int32_t nc) {
-        return static_cast<std::int32_t>(std::clamp(std::floor((v - v0) * inv_cell), 0.0, nc - 1.0));
-      };
-      for (std::int32_t a = lo; a < hi; ++a) {
-        const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
-        const bool fine = ra <= fine_limit, coarse = !fine;
-        const double reach = 2 * (fine ? fine_radius : ra) + skin;
-        const std::int32_t place = disc_place_[a];
-        const std::int32_t gx0 = cell_of(xa - reach, xmin, ncx), gx1 = cell_of(xa + reach, xmin, ncx);
-        const std::int32_t gy_own = disc_cell_[a] / ncx;
-        const std::int32_t gy0 = fine ? gy_own : cell_of(ya - reach, ymin, ncy);
-        const std::int32_t gy1 = cell_of(ya + reach, ymin, ncy);
-        for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
-          std::int32_t q_begin = cell_start_[gy * ncx + gx0];
-          if (fine && gy == gy_own) q_begin = std::max(q_begin, std::min(place + 1, cell_start_[gy * ncx + gx1 + 1]));
-          const std::int32_t q_end = cell_start_[gy * ncx + gx1 + 1];
-          if (out.size() < found + 2 * static_cast<std::size_t>(q_end - q_begin))
-            out.resize(2 * out.size() + 2 * static_cast<std::size_t>(q_end - q_begin));
-          std::int32_t* __restrict next = out.data() + found;
-          // Every candidate is written and kept or overwritten by the next one: no branch on
-          // the outcome (about half the candidates are kept, so a branch mispredicts often).
-          for (std::int32_t q = q_begin; q < q_end; ++q) {
-            const std::int32_t b = cell_disc_[q];
-            const double rb = p.radius[b];
-            // Bitwise, so no branch (a bidisperse pile would mispredict it half the time); a
-            // fine disc scans only places after its own.
-            const bool from_here = (fine & (rb <= fine_limit)) |
-                                   (coarse & ((rb < ra) | ((rb == ra) & (q > place))));  // else from b
-            const double dx = p.x[b] - xa, dy = p.y[b] - ya;
-            const double cut = ra + rb + skin;
-            next[0] = std::min(a, b);
-            next[1] = std::max(a, b);
-            next += 2 * (from_here & (dx * dx + dy * dy < cut * cut));
-          }
-          found = static_cast<std::size_t>(next - out.data());
-        }
-      }
-      out.resize(found);
-    });
-    // Binned by a counting sort in parallel: each thread counts its pairs per row, each row's
-    // start is the sum over threads, and each thread writes its pairs from its own offset in
-    // the row (the rows are sorted after, so the order of the writes does not matter).
-    thread_count_.resize(threads);
-    each_block(threads, [&](int t) {
-      auto& count = thread_count_[t];
-      count.assign(static_cast<std::size_t>(n), 0);
-      const auto& found = thread_j_[t];
-      for (std::size_t q = 0; q < found.size(); q += 2) ++count[found[q]];
-    });
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int32_t r = 0; r < n; ++r) {
-      std::int32_t len = 0;
-      for (int t = 0; t < threads; ++t) len += thread_count_[t][r];
-      pairs.row_start[r + 1] = len;
-    }
-    std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
-    const auto np = pairs.row_start[n];
-    pairs.i.resize(np);
-    pairs.j.resize(np);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int32_t r = 0; r < n; ++r) {
-      std::int32_t at = pairs.row_start[r];
-      for (int t = 0; t < threads; ++t) {
-        const std::int32_t c = thread_count_[t][r];
-        thread_count_[t][r] = at;  // now the thread's cursor in row r
-        at += c;
-      }
-    }
-    each_block(threads, [&](int t) {
-      auto& cursor = thread_count_[t];
-      const auto& found = thread_j_[t];
-      for (std::size_t q = 0; q < found.size(); q += 2) pairs.j[cursor[found[q]]++] = found[q + 1];
-    });
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int32_t i = 0; i < n; ++i) {
-      // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
-      std::int32_t* row = pairs.j.data() + pairs.row_start[i];
-      const std::int32_t len = pairs.row_start[i + 1] - pairs.row_start[i];
-      for (std::int32_t x = 1; x < len; ++x)
-        for (std::int32_t y = x; y > 0 && row[y - 1] > row[y]; --y) std::swap(row[y - 1], row[y]);
-      std::fill(pairs.i.begin() + pairs.row_start[i], pairs.i.begin() + pairs.row_start[i + 1], i);
-    }
-
-    // ---- disc–wall pairs: same blocking as the disc pairs ----
+    // ---- the cell grid, and meanwhile the disc–wall pairs (they need no grid) ----
     const auto ns = static_cast<std::int32_t>(segments.size());
     // The distance to a segment's line is at most the distance to the segment: a disc farther
     // from the line than it can reach (wall_candidate: r + skin, and behind a one-sided face
@@ -235,11 +88,15 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       lines[s] = {normal.x(), normal.y(), normal.dot(segments[s].a),
                   segments[s].one_sided() ? segments[s].behind_reach : 0.0, len > 0};
     }
-    thread_walls_.resize(threads);
+    // The discs' walls in chunks of discs, each chunk's found segments kept apart and joined in
+    // chunk order, so the list is the same whoever took a chunk. One thread bins the discs
+    // into cells while the others take chunks, then it takes chunks too: the grid alone kept
+    // the other threads idle long enough to fall asleep before the pair search (docs/performance.md).
+    constexpr std::int32_t kWallChunk = 128;  // discs
+    const std::int32_t wall_chunks = (n + kWallChunk - 1) / kWallChunk;
+    chunk_walls_.resize(static_cast<std::size_t>(wall_chunks));
     wall_margin_.resize(static_cast<std::size_t>(n));
-    each_block(threads, [&](int t) {
-      const auto [lo, hi] = block(n, t, threads);
-      auto& out = thread_walls_[t];
+    auto find_walls = [&](std::int32_t lo, std::int32_t hi, std::vector<std::int32_t>& out) {
       out.clear();
       for (std::int32_t k = lo; k < hi; ++k) {
         const Eigen::Vector2d c(p.x[k], p.y[k]);
@@ -272,14 +129,144 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         }
         wall_margin_[k] = margin;
       }
-    });
+    };
+    std::exception_ptr grid_failed;
+#pragma omp parallel num_threads(threads)
+    {
+      if (omp_get_thread_num() == 0) {
+        try {
+          grid_.build(p, skin);
+        } catch (...) {
+          grid_failed = std::current_exception();
+        }
+      }
+#pragma omp for schedule(dynamic, 1)
+      for (std::int32_t c = 0; c < wall_chunks; ++c)
+        find_walls(c * kWallChunk, std::min(n, (c + 1) * kWallChunk), chunk_walls_[c]);
+    }
+    if (grid_failed) std::rethrow_exception(grid_failed);
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
     walls.segment.clear();
-    for (int t = 0; t < threads; ++t)
-      walls.segment.insert(walls.segment.end(), thread_walls_[t].begin(), thread_walls_[t].end());
+    for (const auto& found : chunk_walls_) walls.segment.insert(walls.segment.end(), found.begin(), found.end());
     walls.disc.resize(walls.segment.size());
     for (std::int32_t k = 0; k < n; ++k)
       std::fill(walls.disc.begin() + walls.row_start[k], walls.disc.begin() + walls.row_start[k + 1], k);
+    largest_radius_ = grid_.rmax;
+
+    // ---- disc pairs ----
+    // Each pair is found once. Discs up to 1.5 times the smallest radius (the fine ones: the
+    // small species with its spread) find their fine neighbours with a half stencil: all reach
+    // as far as the largest fine disc, so of two fine discs the one earlier in the grid's order
+    // has the other in its stencil and finds the pair, and scans only the grid after its own
+    // place. A pair with a larger disc is found from the larger one (equal radii: the earlier),
+    // which searches the cells within its own diameter plus the skin: a small disc does not
+    // scan the wide stencil a large neighbour needs (D/d = 8: a fifth of the candidates). The
+    // pairs are then put in the rows of their lower index, each row sorted by j, so the list is
+    // the same as a search from every i would give, whatever the thread count.
+    const CellGrid& g = grid_;
+    const std::int32_t ncx = g.ncx;
+    const double fine_limit = 1.5 * g.rmin;
+    double fine_radius = g.rmin;  // the largest fine radius
+    for (std::int32_t k = 0; k < n; ++k)
+      if (p.radius[k] <= fine_limit) fine_radius = std::max(fine_radius, p.radius[k]);
+    // Chunks of discs taken as threads come free (a block's share of large discs, which scan
+    // wide stencils, differs between blocks), each thread's pairs in a buffer of its own:
+    // the binning and the rows' sort below make the list the same whoever found a pair.
+    constexpr std::int32_t kSearchChunk = 128;  // discs
+    const std::int32_t search_chunks = (n + kSearchChunk - 1) / kSearchChunk;
+    thread_j_.resize(threads);
+    thread_found_.assign(threads, 0);
+#pragma omp parallel num_threads(threads)
+    {
+      auto& out = thread_j_[omp_get_thread_num()];  // (lower, higher) index pairs, flattened
+      std::size_t found = 0;
+      // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
+      // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
+      // A grid row's cells are contiguous in g.cell_disc, so each row is one run of discs.
+#pragma omp for schedule(dynamic, 1)
+      for (std::int32_t chunk = 0; chunk < search_chunks; ++chunk) {
+        const std::int32_t lo = chunk * kSearchChunk, hi = std::min(n, lo + kSearchChunk);
+        for (std::int32_t a = lo; a < hi; ++a) {
+          const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
+          const bool fine = ra <= fine_limit, coarse = !fine;
+          const double reach = 2 * (fine ? fine_radius : ra) + skin;
+          const std::int32_t place = g.disc_place[a];
+          const std::int32_t gx0 = g.cell_of(xa - reach, g.xmin, ncx), gx1 = g.cell_of(xa + reach, g.xmin, ncx);
+          const std::int32_t gy_own = g.disc_cell[a] / ncx;
+          const std::int32_t gy0 = fine ? gy_own : g.cell_of(ya - reach, g.ymin, g.ncy);
+          const std::int32_t gy1 = g.cell_of(ya + reach, g.ymin, g.ncy);
+          for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
+            std::int32_t q_begin = g.cell_start[gy * ncx + gx0];
+            if (fine && gy == gy_own) q_begin = std::max(q_begin, std::min(place + 1, g.cell_start[gy * ncx + gx1 + 1]));
+            const std::int32_t q_end = g.cell_start[gy * ncx + gx1 + 1];
+            if (out.size() < found + 2 * static_cast<std::size_t>(q_end - q_begin))
+              out.resize(2 * out.size() + 2 * static_cast<std::size_t>(q_end - q_begin));
+            std::int32_t* __restrict next = out.data() + found;
+            // Every candidate is written and kept or overwritten by the next one: no branch on
+            // the outcome (about half the candidates are kept, so a branch mispredicts often).
+            for (std::int32_t q = q_begin; q < q_end; ++q) {
+              const std::int32_t b = g.cell_disc[q];
+              const double rb = p.radius[b];
+              // Bitwise, so no branch (a bidisperse pile would mispredict it half the time); a
+              // fine disc scans only places after its own.
+              const bool from_here = (fine & (rb <= fine_limit)) |
+                                     (coarse & ((rb < ra) | ((rb == ra) & (q > place))));  // else from b
+              const double dx = p.x[b] - xa, dy = p.y[b] - ya;
+              const double cut = ra + rb + skin;
+              next[0] = std::min(a, b);
+              next[1] = std::max(a, b);
+              next += 2 * (from_here & (dx * dx + dy * dy < cut * cut));
+            }
+            found = static_cast<std::size_t>(next - out.data());
+          }
+        }
+      }
+      thread_found_[omp_get_thread_num()] = found;
+    }
+    // Binned by a counting sort in parallel: each thread counts its pairs per row, each row's
+    // start is the sum over threads, and each thread writes its pairs from its own offset in
+    // the row (the rows are sorted after, so the order of the writes does not matter).
+    thread_count_.resize(threads);
+    each_block(threads, [&](int t) {
+      auto& count = thread_count_[t];
+      count.assign(static_cast<std::size_t>(n), 0);
+      const auto& found = thread_j_[t];
+      for (std::size_t q = 0; q < thread_found_[t]; q += 2) ++count[found[q]];
+    });
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t r = 0; r < n; ++r) {
+      std::int32_t len = 0;
+      for (int t = 0; t < threads; ++t) len += thread_count_[t][r];
+      pairs.row_start[r + 1] = len;
+    }
+    std::partial_sum(pairs.row_start.begin(), pairs.row_start.end(), pairs.row_start.begin());
+    const auto np = pairs.row_start[n];
+    pairs.i.resize(np);
+    pairs.j.resize(np);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t r = 0; r < n; ++r) {
+      std::int32_t at = pairs.row_start[r];
+      for (int t = 0; t < threads; ++t) {
+        const std::int32_t c = thread_count_[t][r];
+        thread_count_[t][r] = at;  // now the thread's cursor in row r
+        at += c;
+      }
+    }
+    each_block(threads, [&](int t) {
+      auto& cursor = thread_count_[t];
+      const auto& found = thread_j_[t];
+      for (std::size_t q = 0; q < thread_found_[t]; q += 2) pairs.j[cursor[found[q]]++] = found[q + 1];
+    });
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int32_t i = 0; i < n; ++i) {
+      // Rows are short (a handful of neighbours): insertion sort beats std::sort here.
+      std::int32_t* row = pairs.j.data() + pairs.row_start[i];
+      const std::int32_t len = pairs.row_start[i + 1] - pairs.row_start[i];
+      for (std::int32_t x = 1; x < len; ++x)
+        for (std::int32_t y = x; y > 0 && row[y - 1] > row[y]; --y) std::swap(row[y - 1], row[y]);
+      std::fill(pairs.i.begin() + pairs.row_start[i], pairs.i.begin() + pairs.row_start[i + 1], i);
+    }
+
   }
 
   // ---- each disc's run: its row, then the pairs where it is j (in pair order, so by i) ----

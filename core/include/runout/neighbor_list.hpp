@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "runout/cell_grid.hpp"
 #include "runout/particles.hpp"
 #include "runout/walls.hpp"
 
@@ -84,12 +85,11 @@ class NeighborSearch {
  private:
   std::vector<double> wall_margin_;
   double largest_radius_ = 0;
-  std::vector<std::int32_t> cell_start_, cell_disc_;
-  std::vector<std::int32_t> disc_cell_;
-  std::vector<std::int32_t> disc_place_;  // disc -> its index in cell_disc_ (the grid's order)
-  std::vector<std::vector<std::int32_t>> thread_j_, thread_walls_;  // per thread, then merged
+  CellGrid grid_;
+  std::vector<std::vector<std::int32_t>> thread_j_;     // per thread, then merged
+  std::vector<std::size_t> thread_found_;               // how much of thread_j_[t] is this search's
+  std::vector<std::vector<std::int32_t>> chunk_walls_;  // per chunk of discs, then merged
   std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
-  std::vector<std::int32_t> cursor_;
   std::vector<std::int32_t> lane_of_;  // disc -> its lane (DiscRuns::lane_disc)
   std::vector<std::int32_t> run_length_;  // disc -> pairs in its run
   PairContacts old_pairs_;

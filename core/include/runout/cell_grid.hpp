@@ -1,0 +1,31 @@
+// The cell grid of the contact search (SPEC §5): every disc binned into square cells by a
+// counting sort, each grid row's cells one run of places, the discs of a cell in index order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "runout/particles.hpp"
+
+namespace runout {
+
+struct CellGrid {
+  double xmin = 0, ymin = 0, inv_cell = 0;
+  std::int32_t ncx = 0, ncy = 0;
+  double rmin = 0, rmax = 0;
+  std::vector<std::int32_t> cell_start;  // cell cy * ncx + cx: places [cell_start[c], cell_start[c + 1])
+  std::vector<std::int32_t> cell_disc;   // place -> disc
+  std::vector<std::int32_t> disc_cell;   // disc -> cell
+  std::vector<std::int32_t> disc_place;  // disc -> place
+
+  // Cells of 2 r_min + skin (grown where the flow spans too many), for the discs of `p`
+  // (at least one). Throws NumericalError for a position or radius that is not finite.
+  void build(const Particles& p, double skin);
+
+  std::int32_t cell_of(double v, double v0, std::int32_t cells) const;
+
+ private:
+  std::vector<std::int32_t> cursor_;
+};
+
+}  // namespace runout
