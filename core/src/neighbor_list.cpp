@@ -167,8 +167,10 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     const std::int32_t ncx = g.ncx;
     const double fine_limit = 1.5 * g.rmin;
     double fine_radius = g.rmin;  // the largest fine radius
+    // A select, not a branch: a bidisperse pile's radii would mispredict it (~10 us a rebuild).
+#pragma omp simd reduction(max : fine_radius)
     for (std::int32_t k = 0; k < n; ++k)
-      if (p.radius[k] <= fine_limit) fine_radius = std::max(fine_radius, p.radius[k]);
+      fine_radius = std::max(fine_radius, p.radius[k] <= fine_limit ? p.radius[k] : 0.0);
     // Chunks of discs taken as threads come free (a block's share of large discs, which scan
     // wide stencils, differs between blocks), each thread's pairs in a buffer of its own:
     // the binning and the rows' sort below make the list the same whoever found a pair.
