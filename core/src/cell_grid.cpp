@@ -8,8 +8,8 @@
 
 namespace runout {
 
-std::int32_t CellGrid::cell_of(double v, double v0, std::int32_t cells) const {
-  return static_cast<std::int32_t>(std::clamp(std::floor((v - v0) * inv_cell), 0.0, cells - 1.0));
+std::int32_t CellGrid::clamped(double cells_from_edge, std::int32_t cells) {
+  return static_cast<std::int32_t>(std::clamp(std::floor(cells_from_edge), 0.0, cells - 1.0));
 }
 
 void CellGrid::build(const Particles& p, double skin) {

@@ -14,6 +14,9 @@ namespace runout {
 
 namespace {
 
+// Discs a thread takes at a time where the rebuild hands out work as threads come free.
+constexpr std::int32_t kChunk = 128;
+
 // Contiguous block of [0, n) for thread t of T: concatenating blocks in thread order gives the
 // same list for any thread count.
 inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T) {
@@ -92,9 +95,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // chunk order, so the list is the same whoever took a chunk. One thread bins the discs
     // into cells while the others take chunks, then it takes chunks too: the grid alone kept
     // the other threads idle long enough to fall asleep before the pair search (docs/performance.md).
-    constexpr std::int32_t kWallChunk = 128;  // discs
-    const std::int32_t wall_chunks = (n + kWallChunk - 1) / kWallChunk;
-    chunk_walls_.resize(static_cast<std::size_t>(wall_chunks));
+    const std::int32_t chunks = (n + kChunk - 1) / kChunk;
+    chunk_walls_.resize(static_cast<std::size_t>(chunks));
     wall_margin_.resize(static_cast<std::size_t>(n));
     auto find_walls = [&](std::int32_t lo, std::int32_t hi, std::vector<std::int32_t>& out) {
       out.clear();
@@ -141,8 +143,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         }
       }
 #pragma omp for schedule(dynamic, 1)
-      for (std::int32_t c = 0; c < wall_chunks; ++c)
-        find_walls(c * kWallChunk, std::min(n, (c + 1) * kWallChunk), chunk_walls_[c]);
+      for (std::int32_t c = 0; c < chunks; ++c)
+        find_walls(c * kChunk, std::min(n, (c + 1) * kChunk), chunk_walls_[c]);
     }
     if (grid_failed) std::rethrow_exception(grid_failed);
     std::partial_sum(walls.row_start.begin(), walls.row_start.end(), walls.row_start.begin());
@@ -174,8 +176,6 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // Chunks of discs taken as threads come free (a block's share of large discs, which scan
     // wide stencils, differs between blocks), each thread's pairs in a buffer of its own:
     // the binning and the rows' sort below make the list the same whoever found a pair.
-    constexpr std::int32_t kSearchChunk = 128;  // discs
-    const std::int32_t search_chunks = (n + kSearchChunk - 1) / kSearchChunk;
     thread_j_.resize(threads);
     thread_found_.assign(threads, 0);
 #pragma omp parallel num_threads(threads)
@@ -186,17 +186,17 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
       // A grid row's cells are contiguous in g.cell_disc, so each row is one run of discs.
 #pragma omp for schedule(dynamic, 1)
-      for (std::int32_t chunk = 0; chunk < search_chunks; ++chunk) {
-        const std::int32_t lo = chunk * kSearchChunk, hi = std::min(n, lo + kSearchChunk);
+      for (std::int32_t chunk = 0; chunk < chunks; ++chunk) {
+        const std::int32_t lo = chunk * kChunk, hi = std::min(n, lo + kChunk);
         for (std::int32_t a = lo; a < hi; ++a) {
           const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
           const bool fine = ra <= fine_limit, coarse = !fine;
           const double reach = 2 * (fine ? fine_radius : ra) + skin;
           const std::int32_t place = g.disc_place[a];
-          const std::int32_t gx0 = g.cell_of(xa - reach, g.xmin, ncx), gx1 = g.cell_of(xa + reach, g.xmin, ncx);
+          const std::int32_t gx0 = g.column(xa - reach), gx1 = g.column(xa + reach);
           const std::int32_t gy_own = g.disc_cell[a] / ncx;
-          const std::int32_t gy0 = fine ? gy_own : g.cell_of(ya - reach, g.ymin, g.ncy);
-          const std::int32_t gy1 = g.cell_of(ya + reach, g.ymin, g.ncy);
+          const std::int32_t gy0 = fine ? gy_own : g.row(ya - reach);
+          const std::int32_t gy1 = g.row(ya + reach);
           for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
             std::int32_t q_begin = g.cell_start[gy * ncx + gx0];
             if (fine && gy == gy_own) q_begin = std::max(q_begin, std::min(place + 1, g.cell_start[gy * ncx + gx1 + 1]));

@@ -22,9 +22,12 @@ struct CellGrid {
   // (at least one). Throws NumericalError for a position or radius that is not finite.
   void build(const Particles& p, double skin);
 
-  std::int32_t cell_of(double v, double v0, std::int32_t cells) const;
+  // The column and row of the cells holding x and y, clamped to the grid.
+  std::int32_t column(double x) const { return clamped((x - xmin) * inv_cell, ncx); }
+  std::int32_t row(double y) const { return clamped((y - ymin) * inv_cell, ncy); }
 
  private:
+  static std::int32_t clamped(double cells_from_edge, std::int32_t cells);
   std::vector<std::int32_t> cursor_;
 };
 
