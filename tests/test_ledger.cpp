@@ -57,7 +57,7 @@ RunResult run_pile(double dt_fraction, std::vector<double>* xs = nullptr, Series
   release(w, setup);
   AvalancheRun run(w, s, setup);
   const RunResult r = run.run();
-  if (xs) *xs = w.particles().x;
+  if (xs) xs->assign(w.particles().x.begin(), w.particles().x.end());
   if (lost) *lost = w.dissipation();
   return r;
 }

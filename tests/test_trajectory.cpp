@@ -61,7 +61,7 @@ World released_pile(const SceneDef& scene) {
 
 // Whether two worlds' discs have the same bits of position, velocity and spin.
 ::testing::AssertionResult same_disc_state(const World& a, const World& b) {
-  const std::pair<const char*, std::vector<double> Particles::*> members[] = {
+  const std::pair<const char*, HotArray<double> Particles::*> members[] = {
       {"x", &Particles::x}, {"y", &Particles::y}, {"vx", &Particles::vx},
       {"vy", &Particles::vy}, {"omega", &Particles::omega}};
   for (const auto& [name, member] : members)

@@ -48,7 +48,7 @@ void check_state(const Particles& p, const std::string& name) {
 // A contact list is rows of strictly increasing keys, one row per disc; pair keys are discs
 // after the row's own, wall keys are segments of the scene.
 template <class Contacts>
-void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int32_t>& key,
+void check_rows(const HotArray<std::int32_t>& row, const HotArray<std::int32_t>& key,
                 const Contacts& c, std::size_t n, std::int64_t key_end, bool pair_rows,
                 const std::string& name) {
   auto bad = [&] { throw IoError(name + ": checkpoint is corrupt (contact lists)"); };
@@ -70,19 +70,25 @@ void check_rows(const std::vector<std::int32_t>& row, const std::vector<std::int
 // partners, history width, history. A world that has not stepped yet has no lists: empty rows
 // for every disc.
 template <class Contacts>
-void put_contacts(ByteWriter& w, const Contacts& c, const std::vector<std::int32_t>& partner, std::size_t discs) {
-  const bool built = c.row_start.size() == discs + 1;
-  w.put_vector(built ? c.row_start : std::vector<std::int32_t>(discs + 1, 0));
-  w.put_vector(built ? partner : std::vector<std::int32_t>{});
-  w.put<std::int32_t>(c.history_width);
-  w.put_vector(built ? c.history : std::vector<double>{});
+void put_contacts(ByteWriter& w, const Contacts& c, const HotArray<std::int32_t>& partner, std::size_t discs) {
+  if (c.row_start.size() == discs + 1) {
+    w.put_vector(c.row_start);
+    w.put_vector(partner);
+    w.put<std::int32_t>(c.history_width);
+    w.put_vector(c.history);
+  } else {
+    w.put_vector(std::vector<std::int32_t>(discs + 1, 0));
+    w.put_vector(std::vector<std::int32_t>{});
+    w.put<std::int32_t>(c.history_width);
+    w.put_vector(std::vector<double>{});
+  }
 }
 template <class Contacts>
-void get_contacts(ByteReader& r, Contacts& c, std::vector<std::int32_t>& partner) {
-  c.row_start = r.get_vector<std::int32_t>();
-  partner = r.get_vector<std::int32_t>();
+void get_contacts(ByteReader& r, Contacts& c, HotArray<std::int32_t>& partner) {
+  c.row_start = r.get_vector<std::int32_t, HotArray<std::int32_t>>();
+  partner = r.get_vector<std::int32_t, HotArray<std::int32_t>>();
   c.history_width = r.get<std::int32_t>();
-  c.history = r.get_vector<double>();
+  c.history = r.get_vector<double, HotArray<double>>();
 }
 
 }  // namespace
@@ -154,7 +160,8 @@ Checkpoint read_checkpoint(std::string_view bytes, std::uint64_t scene_key, cons
     throw IoError(name + ": checkpoint is corrupt (clock or energy ledger)");
   Particles& p = c.discs;
   Particles::for_each_stored(p, [&](const char*, auto& v) {
-    v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
+    using Vector = std::decay_t<decltype(v)>;
+    v = r.get_vector<typename Vector::value_type, Vector>();
   });
   const std::size_t n = p.x.size();
   Particles::for_each_stored(p, [&](const char* field, const auto& v) {

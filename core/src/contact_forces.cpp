@@ -217,7 +217,7 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
 
 template <class Model, class Source, class Out>
 void energy_of(const Source& source, const typename Model::Tables& tables,
-               const std::vector<double>& history, std::int64_t n, Out& e) {
+               const HotArray<double>& history, std::int64_t n, Out& e) {
   constexpr int W = Model::kHistory;
   const auto law = Model::row(tables);
   for (std::int64_t q = 0; q < n; ++q) {
@@ -236,7 +236,7 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
                            std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n) {
   // The contacts of the block's rows, both ends moved to the next block end: the block ends
   // of consecutive disc blocks meet, so every contact is taken once.
-  auto at = [&](const std::vector<std::int32_t>& row_start, std::int64_t disc, std::int64_t count,
+  auto at = [&](const HotArray<std::int32_t>& row_start, std::int64_t disc, std::int64_t count,
                 std::int64_t block) {
     if (disc >= n) return count;
     const std::int64_t q = row_start.empty() ? 0 : row_start[disc];

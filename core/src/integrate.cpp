@@ -112,8 +112,8 @@ double Motion::spread() const {
 }
 
 Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
-               const WallContacts& w, const DiscRuns& runs, const std::vector<double>& x_at_rebuild,
-               const std::vector<double>& y_at_rebuild, std::int64_t lo, std::int64_t hi,
+               const WallContacts& w, const DiscRuns& runs, const HotArray<double>& x_at_rebuild,
+               const HotArray<double>& y_at_rebuild, std::int64_t lo, std::int64_t hi,
                bool gather, double kick, double drift) {
   const StepSettings& st = step.settings;
   if (gather) {

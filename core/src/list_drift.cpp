@@ -14,7 +14,7 @@ void ListDrift::rebuilt(double largest_radius, double skin) {
   found_ = false;
 }
 
-void ListDrift::find_groups(const std::vector<double>& x0, const std::vector<double>& y0,
+void ListDrift::find_groups(const HotArray<double>& x0, const HotArray<double>& y0,
                             const std::vector<double>& wall_margin) {
   const std::size_t n = x0.size(), groups = (n + kGroup - 1) / kGroup;
   box_.resize(4 * groups);
@@ -51,8 +51,8 @@ void ListDrift::find_groups(const std::vector<double>& x0, const std::vector<dou
   found_ = true;
 }
 
-void ListDrift::measure(const std::vector<double>& x, const std::vector<double>& y,
-                        const std::vector<double>& x0, const std::vector<double>& y0,
+void ListDrift::measure(const HotArray<double>& x, const HotArray<double>& y,
+                        const HotArray<double>& x0, const HotArray<double>& y0,
                         std::size_t lo, std::size_t hi) {
   const double* __restrict xs = x.data();
   const double* __restrict ys = y.data();
@@ -74,8 +74,8 @@ void ListDrift::measure(const std::vector<double>& x, const std::vector<double>&
   }
 }
 
-double ListDrift::closing(const std::vector<double>& x, const std::vector<double>& y,
-                          const std::vector<double>& x0, const std::vector<double>& y0,
+double ListDrift::closing(const HotArray<double>& x, const HotArray<double>& y,
+                          const HotArray<double>& x0, const HotArray<double>& y0,
                           const std::vector<double>& wall_margin, double all_spread) {
   if (!found_) find_groups(x0, y0, wall_margin);
   measure(x, y, x0, y0, 0, x.size());

@@ -37,10 +37,10 @@ void each_block(int blocks, const Body& body) {
 // Both lists are sorted by (first, second) within a row; rows are per first index. A list of
 // another width (a checkpoint of other laws) carries nothing.
 template <class Key>
-void carry_history(const std::vector<std::int32_t>& old_row, const Key& old_second,
-                   const std::vector<double>& old_history, int old_width,
-                   const std::vector<std::int32_t>& row, const Key& second,
-                   std::vector<double>& history, int width, std::int32_t rows, int threads) {
+void carry_history(const HotArray<std::int32_t>& old_row, const Key& old_second,
+                   const HotArray<double>& old_history, int old_width,
+                   const HotArray<std::int32_t>& row, const Key& second,
+                   HotArray<double>& history, int width, std::int32_t rows, int threads) {
   const bool had_old = old_row.size() == row.size() && old_width == width &&
                        old_history.size() == old_second.size() * static_cast<size_t>(width);
   if (width == 0) return;

@@ -55,7 +55,8 @@ RunState decode_run_state(const std::string& bytes, const std::string& name) {
     RunState::for_each_stored_at_rest(s, get);
     Particles& p = s.rest_particles;
     Particles::for_each_deposit(p, [&](const char*, auto& v) {
-      v = r.get_vector<typename std::decay_t<decltype(v)>::value_type>();
+      using Vector = std::decay_t<decltype(v)>;
+      v = r.get_vector<typename Vector::value_type, Vector>();
     });
     Particles::for_each_deposit(p, [&](const char*, const auto& v) {
       if (v.size() != p.x.size()) corrupt("deposit at rest");

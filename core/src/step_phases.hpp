@@ -54,8 +54,8 @@ struct Motion {
   double largest() const { return std::sqrt(max_displacement2); }
 };
 Motion advance(const StepContext& step, Particles& p, const PairContacts& pairs,
-               const WallContacts& walls, const DiscRuns& runs, const std::vector<double>& x0,
-               const std::vector<double>& y0, std::int64_t lo, std::int64_t hi, bool gather,
+               const WallContacts& walls, const DiscRuns& runs, const HotArray<double>& x0,
+               const HotArray<double>& y0, std::int64_t lo, std::int64_t hi, bool gather,
                double kick, double drift);
 
 }  // namespace runout::phases

@@ -37,7 +37,7 @@ World::World(Particles particles, std::vector<Segment> segments, ContactTable ta
 
 void World::forget_normal_history() {
   // The normal law's columns come first (contact.hpp).
-  auto forget = [&](std::vector<double>& history, std::size_t count) {
+  auto forget = [&](HotArray<double>& history, std::size_t count) {
     std::fill_n(history.begin(), std::min(history.size(), normal_history_width_ * count), 0.0);
   };
   forget(pairs_.history, pairs_.size());
@@ -102,13 +102,13 @@ void World::reorder_discs() {
   // History keyed by the new numbering, rows sorted, ready for the search to carry over.
   // Contacts with all-zero history (not touching) need not be carried.
   const int W = history_width_;
-  auto carried = [W](const std::vector<double>& h, std::size_t count, std::size_t q) {
+  auto carried = [W](const HotArray<double>& h, std::size_t count, std::size_t q) {
     for (int m = 0; m < W; ++m) if (h[m * count + q] != 0.0) return true;
     return false;
   };
   auto rows_of = [&](std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, std::size_t>>& keys,
-                     const std::vector<double>& history, std::vector<std::int32_t>& row_start,
-                     std::vector<std::int32_t>& second, std::vector<double>& out) {
+                     const HotArray<double>& history, HotArray<std::int32_t>& row_start,
+                     HotArray<std::int32_t>& second, HotArray<double>& out) {
     std::sort(keys.begin(), keys.end());
     row_start.assign(n + 1, 0);
     const std::size_t count = W > 0 ? history.size() / W : 0, kept = keys.size();

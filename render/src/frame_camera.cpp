@@ -143,7 +143,7 @@ void FrameMaker::update_camera(const World& world, double t_star) {
       const double half_w = 0.5 * W / scale, half_h = 0.5 * H / scale;
       double cx = view_.x0 + half_w, cy = view_.y0 + half_h;
       if (p.size() > 0) {
-        std::vector<double> xs(p.x);
+        std::vector<double> xs(p.x.begin(), p.x.end());
         const std::size_t at = static_cast<std::size_t>(0.98 * (xs.size() - 1));
         std::nth_element(xs.begin(), xs.begin() + at, xs.end());
         const double target_x = xs[at] - 0.5 * half_w;

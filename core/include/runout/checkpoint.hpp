@@ -55,7 +55,7 @@ class ByteWriter {
   template <class T> void put(const T& v) {
     out_.append(reinterpret_cast<const char*>(&v), sizeof(T));
   }
-  template <class T> void put_vector(const std::vector<T>& v) {
+  template <class T, class Allocator> void put_vector(const std::vector<T, Allocator>& v) {
     put<std::uint64_t>(v.size());
     if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
@@ -79,10 +79,11 @@ class ByteReader {
     at_ += sizeof(T);
     return v;
   }
-  template <class T> std::vector<T> get_vector() {
+  // Into a std::vector<T> or another vector of T (HotArray).
+  template <class T, class Vector = std::vector<T>> Vector get_vector() {
     const auto n = get<std::uint64_t>();
     if (n > (in_.size() - at_) / sizeof(T)) fail();
-    std::vector<T> v(n);
+    Vector v(n);
     if (n > 0) std::memcpy(v.data(), in_.data() + at_, n * sizeof(T));  // data() may be null when empty
     at_ += n * sizeof(T);
     return v;

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "runout/hot_array.hpp"
+
 namespace runout {
 
 class ListDrift {
@@ -31,20 +33,20 @@ class ListDrift {
   // A bound, to hold against the skin, on how much closer two unlisted bodies came since the
   // rebuild, from the centres now (x, y) and at the rebuild (x0, y0), each disc's wall margin
   // at the rebuild, and the spread of all displacements (the diagonal of their box).
-  double closing(const std::vector<double>& x, const std::vector<double>& y,
-                 const std::vector<double>& x0, const std::vector<double>& y0,
+  double closing(const HotArray<double>& x, const HotArray<double>& y,
+                 const HotArray<double>& x0, const HotArray<double>& y0,
                  const std::vector<double>& wall_margin, double all_spread);
   // The same in two parts, so threads can measure their own discs side by side: once the
   // groups are found (since the last `closing`, no rebuild), each group's box of
   // displacements for the discs [lo, hi) (lo starts a group), then the bound from them all.
   bool found() const { return found_; }
-  void measure(const std::vector<double>& x, const std::vector<double>& y,
-               const std::vector<double>& x0, const std::vector<double>& y0, std::size_t lo,
+  void measure(const HotArray<double>& x, const HotArray<double>& y,
+               const HotArray<double>& x0, const HotArray<double>& y0, std::size_t lo,
                std::size_t hi);
   double bound(double all_spread) const;
 
  private:
-  void find_groups(const std::vector<double>& x0, const std::vector<double>& y0,
+  void find_groups(const HotArray<double>& x0, const HotArray<double>& y0,
                    const std::vector<double>& wall_margin);
 
   double reach_ = 0, far_slack_ = 0, skin_ = 0;

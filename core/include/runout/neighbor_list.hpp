@@ -15,32 +15,32 @@ namespace runout {
 
 // Disc–disc candidate pairs, i < j, sorted by (i, j).
 struct PairContacts {
-  std::vector<std::int32_t> i, j;
+  HotArray<std::int32_t> i, j;
   // History (SPEC §2): history_width columns, contact q's value m at history[m * size() + q],
   // laid out by the contact model (contact.hpp: normal | tangential | rolling), e.g.
   // overlap_max and the tangential spring.
-  std::vector<double> history;
+  HotArray<double> history;
   int history_width = 0;
   // This step's push of pair q on i at [q], and on j at [size() + q] (the force opposite,
   // the torque the law gives j), so each disc's sum reads one array (DiscRuns); [2 size()]
   // is always zero. In a pass of several threads a packed copy of the pushes that cross to a
   // later thread's discs follows it (Handoff).
-  std::vector<double> fx, fy, torque;
-  std::vector<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
+  HotArray<double> fx, fy, torque;
+  HotArray<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
   // Row of the contact parameter table (species_i * species_count + species_j), set with the
   // lists by the World (the search does not know the table).
-  std::vector<std::int32_t> kind;
+  HotArray<std::int32_t> kind;
 
   std::size_t size() const { return i.size(); }
 };
 
 // Disc–wall-segment candidate pairs, sorted by (disc, segment).
 struct WallContacts {
-  std::vector<std::int32_t> disc, segment;
-  std::vector<double> history;  // as PairContacts
+  HotArray<std::int32_t> disc, segment;
+  HotArray<double> history;  // as PairContacts
   int history_width = 0;
-  std::vector<double> fx, fy, torque;  // force and torque on the disc
-  std::vector<std::int32_t> row_start;  // per disc
+  HotArray<double> fx, fy, torque;  // force and torque on the disc
+  HotArray<std::int32_t> row_start;  // per disc
 
   std::size_t size() const { return disc.size(); }
 };
@@ -60,10 +60,10 @@ struct WallContacts {
 struct DiscRuns {
   static constexpr std::int32_t kSlice = 4;
   static constexpr std::int32_t kWindow = 32;  // discs; a multiple of kSlice
-  std::vector<std::int32_t> slice_start;  // slice g: slots [slice_start[g], slice_start[g + 1])
-  std::vector<std::int32_t> source;       // slot -> index into PairContacts::fx, fy, torque
-  std::vector<std::int32_t> lane_disc;    // kSlice g + l -> disc of that lane, -1 past the last
-  std::vector<std::int32_t> incoming;     // pair q -> the slot of its push on j (Handoff)
+  HotArray<std::int32_t> slice_start;  // slice g: slots [slice_start[g], slice_start[g + 1])
+  HotArray<std::int32_t> source;       // slot -> index into PairContacts::fx, fy, torque
+  HotArray<std::int32_t> lane_disc;    // kSlice g + l -> disc of that lane, -1 past the last
+  HotArray<std::int32_t> incoming;     // pair q -> the slot of its push on j (Handoff)
 
   std::size_t slices() const { return slice_start.empty() ? 0 : slice_start.size() - 1; }
 };

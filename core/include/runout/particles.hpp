@@ -6,17 +6,19 @@
 #include <string_view>
 #include <vector>
 
+#include "runout/hot_array.hpp"
+
 namespace runout {
 
 struct Particles {
   // Hot: read or written every step.
-  std::vector<double> x, y, vx, vy, omega;
-  std::vector<double> radius, inv_mass, inv_inertia;
-  std::vector<std::int32_t> species;
+  HotArray<double> x, y, vx, vy, omega;
+  HotArray<double> radius, inv_mass, inv_inertia;
+  HotArray<std::int32_t> species;
   // Velocity Verlet keeps the last acceleration between steps.
-  std::vector<double> ax, ay, alpha;
-  // Cold: bookkeeping and output.
-  std::vector<double> angle;  // accumulated rotation (rad), for drawing spokes
+  HotArray<double> ax, ay, alpha;
+  // Cold: bookkeeping and output (angle is drifted with the rest, hence hot storage too).
+  HotArray<double> angle;  // accumulated rotation (rad), for drawing spokes
   std::vector<double> mass;
   std::vector<std::int64_t> id;
 

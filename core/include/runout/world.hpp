@@ -181,7 +181,7 @@ class World {
   std::int64_t steps_ = 0;
 
   // Verlet-list validity (SPEC §5): see World::step.
-  std::vector<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
+  HotArray<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
   double list_drift_ = 0;  // bound on how much closer any two bodies came since the rebuild (m)
   ListDrift drift_;         // judges list_drift_ group by group
   bool watch_groups_ = false;  // the last step needed the groups' bound (ListDrift)
