@@ -75,7 +75,7 @@ std::string kernel_output() {
         if (c.fx[q] == 0.0 && c.fy[q] == 0.0) continue;
         std::snprintf(line, sizeof line, "%s %d pair %lld %lld %.17g %.17g %.17g %.17g\n",
                       model_name(l).c_str(), step, (long long)w.particles().id[c.i[q]],
-                      (long long)w.particles().id[c.j[q]], c.fx[q], c.fy[q], c.torque[q], c.torque[c.size() + q]);
+                      (long long)w.particles().id[c.j[q]], c.fx[q], c.fy[q], c.torque[q], c.torque[c.j_offset() + q]);
         out << line;
       }
       const auto& wc = w.wall_contacts();

@@ -60,7 +60,7 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
             if (distance_to(walls[s], {p.x[a], p.y[a]}) < p.radius[a] + skin) wall_expected.insert({int(a), int(s)});
         EXPECT_EQ(wall_found, wall_expected);
         // Each disc's run: the pairs where it is i (by j), then where it is j (by i), as
-        // pushes on i at [q] and on j at [size + q], in its lane of a slice (lane m of slice g
+        // pushes on i at [q] and on j at [j_offset + q], in its lane of a slice (lane m of slice g
         // at slice_start[g] + L s + m for slot s), the slice as long as its longest run and the
         // padding reading the push that is always zero; every push read once. The lanes of a
         // window of kWindow discs are those discs, longest run first.
@@ -68,7 +68,19 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
         const auto np = static_cast<std::int32_t>(pairs.size());
         std::vector<std::vector<std::int32_t>> expected_run(p.size()), run(p.size());
         for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.i[q]].push_back(q);
-        for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(np + q);
+        // The pushes on j, the zero push and the packed area each start a cache line after a
+        // free one (8 doubles): np = 13 gives 24, 48 and 64.
+        const auto on_j = static_cast<std::int32_t>(pairs.j_offset());
+        EXPECT_EQ(on_j % 8, 0);
+        EXPECT_GE(on_j, np + 8);
+        EXPECT_LT(on_j, np + 16);
+        EXPECT_EQ(pairs.zero_push() % 8, 0u);
+        EXPECT_GE(pairs.zero_push(), pairs.j_offset() + np + 8);
+        EXPECT_EQ(pairs.packed_area(), pairs.zero_push() + 16);
+        EXPECT_EQ(PairContacts::after_a_free_line(13), 24u);
+        EXPECT_EQ(PairContacts::after_a_free_line(16), 24u);
+        EXPECT_EQ(PairContacts::after_a_free_line(0), 8u);
+        for (std::int32_t q = 0; q < np; ++q) expected_run[pairs.j[q]].push_back(on_j + q);
         ASSERT_EQ(runs.slices(), (p.size() + L - 1) / L);
         ASSERT_EQ(runs.lane_disc.size(), runs.slices() * L);
         ASSERT_EQ(runs.source.size(), std::size_t(runs.slice_start.back()));
@@ -93,13 +105,14 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
             for (std::int32_t s = 0; s < longest; ++s) {
               const std::int32_t e = runs.source[runs.slice_start[g] + L * s + m % L];
               if (k >= 0 && std::size_t(s) < expected_run[k].size()) run[k].push_back(e);
-              else EXPECT_EQ(e, 2 * np) << "padding";
+              else EXPECT_EQ(e, std::int32_t(pairs.zero_push())) << "padding";
             }
           }
           EXPECT_EQ(std::size_t(longest), expected_longest);
         }
         EXPECT_EQ(run, expected_run);
-        EXPECT_EQ(pairs.fx.size(), std::size_t(2 * np + 1));
+        EXPECT_EQ(pairs.fx.size(), pairs.zero_push() + 1);
+        EXPECT_EQ(pairs.fx[pairs.zero_push()], 0.0);
       }
     }
   }

@@ -102,8 +102,9 @@ struct Kernel {
   double impact_rate;
   double* __restrict history;  // column m of contact q at history[m * count + q] (SoA)
   std::int64_t count;
-  // The push on the disc (pairs: on i) at [q]; pairs also write the push on j at [count + q].
+  // The push on the disc (pairs: on i) at [q]; pairs also write the push on j at [on_j + q].
   double* __restrict fx; double* __restrict fy; double* __restrict torque;
+  std::int64_t on_j;
 
   [[gnu::always_inline]] ContactSums one(std::int64_t q) const {
     constexpr int W = Model::kHistory;
@@ -127,13 +128,13 @@ struct Kernel {
     fx[q] = push_x;
     fy[q] = push_y;
     if constexpr (Source::kPairs) {  // Newton's third law
-      fx[count + q] = -push_x;
-      fy[count + q] = -push_y;
+      fx[on_j + q] = -push_x;
+      fy[on_j + q] = -push_y;
     }
     // Without friction or rolling the torques stay the zeros the list rebuild wrote.
     if constexpr (Model::kFriction || Model::kRolling) {
       torque[q] = c.touching ? a.torque_i : 0.0;
-      if constexpr (Source::kPairs) torque[count + q] = c.touching ? a.torque_j : 0.0;
+      if constexpr (Source::kPairs) torque[on_j + q] = c.touching ? a.torque_j : 0.0;
     }
     // The guard watches impacts (loading faster than impact_rate), not the permanent set of
     // a static hysteretic contact.
@@ -171,15 +172,15 @@ struct Kernel {
 // however the blocks are shared (a resumed run may use another count, SPEC §8).
 template <class Kernel>
 PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
-                    PassSums* blocks, std::int64_t block) {
+                    LedgerBlocks::Block* blocks, std::int64_t block) {
   if (!ledger) return kernel(lo, hi);
   PassSums worst;
   // An empty range may start at the contact count, inside the last block: that block is
   // another thread's.
   if (lo >= hi) return worst;
   for (std::int64_t b = lo / block; b * block < hi; ++b) {
-    blocks[b] = kernel(b * block, std::min(hi, (b + 1) * block));
-    worst.worst = std::max(worst.worst, blocks[b].worst);
+    blocks[b].sums = kernel(b * block, std::min(hi, (b + 1) * block));
+    worst.worst = std::max(worst.worst, blocks[b].sums.worst);
   }
   return worst;
 }
@@ -201,13 +202,14 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                                               st.impact_rate, pairs.history.data(),
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
-                                              pairs.torque.data()};
+                                              pairs.torque.data(),
+                                              static_cast<std::int64_t>(pairs.j_offset())};
   const auto wall_law = Model::tables(step.table.wall);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, walls.history.data(),
                                               static_cast<std::int64_t>(walls.size()),
                                               walls.fx.data(), walls.fy.data(),
-                                              walls.torque.data()};
+                                              walls.torque.data(), 0};
   const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data(),
                                 kPairLedgerBlock);
   const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data(),
@@ -286,9 +288,9 @@ void LedgerBlocks::size_for(const PairContacts& pairs, const WallContacts& walls
 
 PassSums LedgerBlocks::total() const {
   // The pairs' sum plus the walls' sum, each added from zero in block order.
-  auto sum = [](const std::vector<PassSums>& blocks) {
+  auto sum = [](const std::vector<Block>& blocks) {
     PassSums t;
-    for (const PassSums& b : blocks) t = t + b;
+    for (const Block& b : blocks) t = t + b.sums;
     return t;
   };
   return sum(pairs) + sum(walls);

@@ -47,8 +47,7 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
   }
   // The packed area follows the push that is always zero; each crossing pair's slot in its
   // j's run reads its copy there.
-  const auto np = static_cast<std::int64_t>(pairs.size());
-  const std::size_t area = static_cast<std::size_t>(2 * np + 1);
+  const std::size_t area = pairs.packed_area();
   pairs.fx.resize(area + crossing_.size());
   pairs.fy.resize(area + crossing_.size());
   pairs.torque.resize(area + crossing_.size());
@@ -59,13 +58,13 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
 }
 
 void Handoff::publish(int t, PairContacts& pairs) const {
-  const auto np = static_cast<std::int64_t>(pairs.size());
-  const std::int64_t area = 2 * np + 1;
+  const auto area = static_cast<std::int64_t>(pairs.packed_area());
+  const auto on_j = static_cast<std::int64_t>(pairs.j_offset());
   double* __restrict fx = pairs.fx.data();
   double* __restrict fy = pairs.fy.data();
   double* __restrict torque = pairs.torque.data();
   for (std::int64_t c = crossing_start_[t]; c < crossing_start_[t + 1]; ++c) {
-    const std::int64_t from = np + crossing_[c];
+    const std::int64_t from = on_j + crossing_[c];
     fx[area + c] = fx[from];
     fy[area + c] = fy[from];
     torque[area + c] = torque[from];
@@ -73,7 +72,7 @@ void Handoff::publish(int t, PairContacts& pairs) const {
 }
 
 void Handoff::prefetch(int t, const PairContacts& pairs) const {
-  const std::int64_t area = 2 * static_cast<std::int64_t>(pairs.size()) + 1;
+  const auto area = static_cast<std::int64_t>(pairs.packed_area());
   for (std::int64_t c = crossing_start_[t]; c < crossing_start_[t + 1]; c += 8) {
     __builtin_prefetch(pairs.fx.data() + area + c);
     __builtin_prefetch(pairs.fy.data() + area + c);
@@ -84,8 +83,8 @@ void Handoff::prefetch(int t, const PairContacts& pairs) const {
 void Handoff::release(const PairContacts& pairs, DiscRuns& runs, std::int64_t lists_version) {
   // Runs of other lists were laid out afresh by their rebuild.
   if (lists_ != lists_version) return;
-  const auto np = static_cast<std::int32_t>(pairs.size());
-  for (const std::int32_t q : crossing_) runs.source[runs.incoming[q]] = np + q;
+  const auto on_j = static_cast<std::int32_t>(pairs.j_offset());
+  for (const std::int32_t q : crossing_) runs.source[runs.incoming[q]] = on_j + q;
   lists_ = -1;  // found again before the next pass of several threads
 }
 

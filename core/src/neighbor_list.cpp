@@ -276,6 +276,8 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
   // incoming pairs of its own rows, so disc k's incoming pairs from thread t's rows (smaller
   // i) follow those from the threads before it, which is pair order.
   const auto np = static_cast<std::int32_t>(pairs.i.size());
+  const auto on_j = static_cast<std::int32_t>(pairs.j_offset());
+  const auto zero = static_cast<std::int32_t>(pairs.zero_push());
   constexpr std::int32_t L = DiscRuns::kSlice, W = DiscRuns::kWindow;
   static_assert(W % L == 0);
   const std::int32_t slices = (n + L - 1) / L, windows = (n + W - 1) / W;
@@ -330,8 +332,9 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       const std::int32_t lane = lane_of_[k];
       return runs.slice_start[lane / L] + L * s + lane % L;
     };
-    // Each lane's own row, then padding past its run, which reads the push at [2 np] (the
-    // kernel never writes it); the incoming pairs are written by the threads of their rows.
+    // Each lane's own row, then padding past its run, which reads the push that is always
+    // zero (the kernel never writes it); the incoming pairs are written by the threads of
+    // their rows.
 #pragma omp for schedule(static)
     for (std::int32_t g = 0; g < slices; ++g) {
       const std::int32_t longest = (runs.slice_start[g + 1] - runs.slice_start[g]) / L;
@@ -341,24 +344,24 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
         const std::int32_t row = k >= 0 ? row_start[k + 1] - row_start[k] : 0;
         const std::int32_t end = k >= 0 ? run_length_[k] : 0;
         for (std::int32_t s = 0; s < row; ++s) lane[L * s] = row_start[k] + s;
-        for (std::int32_t s = end; s < longest; ++s) lane[L * s] = 2 * np;
+        for (std::int32_t s = end; s < longest; ++s) lane[L * s] = zero;
       }
     }
     for (std::int32_t q = row_start[lo]; q < row_start[hi]; ++q) {
       const std::int32_t k = pairs.j[q], at = slot(k, from_here[k]++);
-      runs.source[at] = np + q;
+      runs.source[at] = on_j + q;
       runs.incoming[q] = at;
     }
   }
 
   // ---- history and per-step buffers ----
   pairs.history_width = history_width;
-  // carry_history writes every history entry, and the kernel every push but [2 np] (and the
-  // torques of laws without friction or rolling): no fill for the rest.
+  // carry_history writes every history entry, and the kernel every push but the zero one (and
+  // the torques of laws without friction or rolling); the free lines are never read.
   pairs.history.resize(np * history_width);
-  pairs.fx.resize(2 * np + 1); pairs.fy.resize(2 * np + 1);
-  pairs.fx[2 * np] = pairs.fy[2 * np] = 0;
-  pairs.torque.assign(2 * np + 1, 0);
+  pairs.fx.resize(pairs.zero_push() + 1); pairs.fy.resize(pairs.zero_push() + 1);
+  pairs.fx[pairs.zero_push()] = pairs.fy[pairs.zero_push()] = 0;
+  pairs.torque.assign(pairs.zero_push() + 1, 0);
   carry_history(old_pairs_.row_start, old_pairs_.j, old_pairs_.history, old_pairs_.history_width,
                 pairs.row_start, pairs.j, pairs.history, history_width, n, threads);
   const size_t nw = walls.disc.size();

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <new>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct PageSpreadAllocator {
   using value_type = T;
 
   static constexpr std::size_t kPage = 4096, kLine = 64;
-  // Smaller arrays are not worth two pages: the ordinary heap.
+  // Smaller arrays are not worth two pages: the ordinary heap, each on whole lines.
   static constexpr std::size_t kSmallest = kPage;
 
   PageSpreadAllocator() noexcept = default;
@@ -33,8 +34,9 @@ struct PageSpreadAllocator {
 
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
-    if (n > (static_cast<std::size_t>(-1) - 3 * kPage) / sizeof(T)) throw std::bad_array_new_length();
-    if (bytes < kSmallest) return static_cast<T*>(::operator new(bytes));
+    constexpr auto kLargest = static_cast<std::size_t>(std::numeric_limits<std::ptrdiff_t>::max());
+    if (n > (kLargest - 3 * kPage) / sizeof(T)) throw std::bad_array_new_length();
+    if (bytes < kSmallest) return static_cast<T*>(::operator new(bytes, std::align_val_t{kLine}));
     // [offset: 1-62 lines, the first holding the base] [the array] [at least one free page]
     const std::size_t total = (62 * kLine + bytes + 2 * kPage - 1) / kPage * kPage;
     void* base = std::aligned_alloc(kPage, total);
@@ -48,7 +50,7 @@ struct PageSpreadAllocator {
 
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) < kSmallest) {
-      ::operator delete(p);
+      ::operator delete(p, std::align_val_t{kLine});
       return;
     }
     std::free(reinterpret_cast<void**>(p)[-1]);

@@ -21,10 +21,12 @@ struct PairContacts {
   // overlap_max and the tangential spring.
   HotArray<double> history;
   int history_width = 0;
-  // This step's push of pair q on i at [q], and on j at [size() + q] (the force opposite,
-  // the torque the law gives j), so each disc's sum reads one array (DiscRuns); [2 size()]
+  // This step's push of pair q on i at [q], and on j at [j_offset() + q] (the force opposite,
+  // the torque the law gives j), so each disc's sum reads one array (DiscRuns); [zero_push()]
   // is always zero. In a pass of several threads a packed copy of the pushes that cross to a
-  // later thread's discs follows it (Handoff).
+  // later thread's discs starts at [packed_area()] (Handoff). Each of these parts starts a
+  // cache line and a free line precedes it: the threads write the two ends of the pushes on i
+  // and on j, and no line may be written by two of them (hot_array.hpp).
   HotArray<double> fx, fy, torque;
   HotArray<std::int32_t> row_start;  // pairs whose i == k: [row_start[k], row_start[k+1])
   // Row of the contact parameter table (species_i * species_count + species_j), set with the
@@ -32,6 +34,15 @@ struct PairContacts {
   HotArray<std::int32_t> kind;
 
   std::size_t size() const { return i.size(); }
+  std::size_t j_offset() const { return after_a_free_line(size()); }
+  std::size_t zero_push() const { return after_a_free_line(j_offset() + size()); }
+  std::size_t packed_area() const { return after_a_free_line(zero_push() + 1); }
+
+  // The first start of a cache line of doubles at or after `end` + one line.
+  static constexpr std::size_t after_a_free_line(std::size_t end) {
+    constexpr std::size_t kLine = 64 / sizeof(double);
+    return (end + 2 * kLine - 1) / kLine * kLine;
+  }
 };
 
 // Disc–wall-segment candidate pairs, sorted by (disc, segment).

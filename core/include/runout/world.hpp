@@ -81,7 +81,11 @@ struct PassSums {
 inline constexpr std::int64_t kPairLedgerBlock = 64;
 inline constexpr std::int64_t kWallLedgerBlock = 16;
 struct LedgerBlocks {
-  std::vector<PassSums> pairs, walls;
+  // A cache line each: two threads write the blocks on either side of their boundary.
+  struct alignas(64) Block {
+    PassSums sums;
+  };
+  std::vector<Block> pairs, walls;
   void size_for(const PairContacts& pairs, const WallContacts& walls);
   PassSums total() const;  // the largest overlap share and the losses, in block order
 };
