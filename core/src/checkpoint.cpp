@@ -71,17 +71,11 @@ void check_rows(const HotArray<std::int32_t>& row, const HotArray<std::int32_t>&
 // for every disc.
 template <class Contacts>
 void put_contacts(ByteWriter& w, const Contacts& c, const HotArray<std::int32_t>& partner, std::size_t discs) {
-  if (c.row_start.size() == discs + 1) {
-    w.put_vector(c.row_start);
-    w.put_vector(partner);
-    w.put<std::int32_t>(c.history_width);
-    w.put_vector(c.history);
-  } else {
-    w.put_vector(std::vector<std::int32_t>(discs + 1, 0));
-    w.put_vector(std::vector<std::int32_t>{});
-    w.put<std::int32_t>(c.history_width);
-    w.put_vector(std::vector<double>{});
-  }
+  const bool built = c.row_start.size() == discs + 1;
+  w.put_vector(built ? c.row_start : HotArray<std::int32_t>(discs + 1, 0));
+  w.put_vector(built ? partner : HotArray<std::int32_t>{});
+  w.put<std::int32_t>(c.history_width);
+  w.put_vector(built ? c.history : HotArray<double>{});
 }
 template <class Contacts>
 void get_contacts(ByteReader& r, Contacts& c, HotArray<std::int32_t>& partner) {
