@@ -69,8 +69,7 @@ Ceiling ceiling_turn(const World& world, int count, long long steps) {
   turn.steps = steps;
   fresh_copies();
   const auto start = Clock::now();
-  for (World& c : copies)
-    for (long long s = 0; s < steps; ++s) c.step();
+  for (World& c : copies) c.advance(steps);
   turn.alone = std::chrono::duration<double>(Clock::now() - start).count();
   turn.apart = side_by_side(false);
   turn.lockstep = side_by_side(true);
@@ -89,7 +88,7 @@ int bench_command(const BenchOptions& o) {
   world.set_threads(o.threads);
   const long long warmup = o.warmup_steps >= 0 ? o.warmup_steps
                                               : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
-  for (long long s = 0; s < warmup; ++s) world.step();
+  world.advance(warmup);
   if (o.frames > 0) return bench_frames(world, scene, setup, o.picture, o.frames, 20);
   const double t_star_start = world.time() / setup.unit_time;
   // Each thread count's steps, time and profile. With --against-threads the two counts (and
@@ -110,7 +109,7 @@ int bench_command(const BenchOptions& o) {
     world.set_threads(tally.threads);
     const StepProfile before = world.profile();
     const auto t0 = Clock::now();
-    for (long long s = 0; s < steps; ++s) world.step();
+    world.advance(steps);
     tally.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     tally.steps += steps;
     const StepProfile& after = world.profile();

@@ -130,5 +130,36 @@ TEST(Trajectory, WorldAssignedOverASteppedOneStepsLikeOne) {
   }
 }
 
+// Many steps in one advance: two threads keep one parallel region across steps until the
+// lists must be rebuilt or the blocks move, judging each step alike (World::advance). The
+// same bits as one thread stepping one step at a time: positions, velocities, spins, the
+// clock, the rebuilds and, with the ledger on, every joule of dissipation (each region
+// step's ledger is read while the next one's is written). 3000 steps of a flowing pile cross several rebuilds.
+TEST(Trajectory, AdvanceOfManyStepsStepsLikeOneStepAtATime) {
+  World released = released_pile(testing::medium_pile());
+  released.set_track_energy(true);
+  constexpr int kSteps = 3000;
+  World one = released;
+  one.set_threads(1);
+  for (int k = 0; k < kSteps; ++k) one.step();
+  const std::int64_t one_rebuilt = one.profile().rebuilds - released.profile().rebuilds;
+  for (const int threads : {2, 9}) {
+    World other = released;
+    other.set_threads(threads);
+    const std::int64_t rebuilds = other.profile().rebuilds;
+    other.advance(kSteps);
+    EXPECT_GE(other.profile().rebuilds - rebuilds, 3) << "the flow should cross several rebuilds";
+    // The groups' bound, judged inside the region from each block's terms, is the one a
+    // thread alone works out: the lists are rebuilt as often.
+    EXPECT_EQ(other.profile().rebuilds - rebuilds, one_rebuilt) << threads << " threads";
+    EXPECT_TRUE(same_disc_state(one, other)) << threads << " threads";
+    EXPECT_EQ(other.step_count(), one.step_count());
+    EXPECT_EQ(other.time(), one.time());
+    EXPECT_EQ(other.dissipation().normal, one.dissipation().normal) << threads << " threads";
+    EXPECT_EQ(other.dissipation().friction, one.dissipation().friction) << threads << " threads";
+    EXPECT_GT(other.dissipation().normal + other.dissipation().friction, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace runout

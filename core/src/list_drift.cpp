@@ -17,8 +17,10 @@ void ListDrift::rebuilt(double largest_radius, double skin) {
 void ListDrift::find_groups(const HotArray<double>& x0, const HotArray<double>& y0,
                             const std::vector<double>& wall_margin) {
   const std::size_t n = x0.size(), groups = (n + kGroup - 1) / kGroup;
-  box_.resize(4 * groups);
-  largest2_.resize(groups);
+  for (int slot = 0; slot < kSlots; ++slot) {
+    box_[slot].resize(4 * groups);
+    largest2_[slot].resize(groups);
+  }
   wall_slack_.resize(groups);
   // Each group's box of centres at the rebuild, then the groups near it by a sweep along x.
   for (std::size_t g = 0; g < groups; ++g) {
@@ -31,10 +33,10 @@ void ListDrift::find_groups(const HotArray<double>& x0, const HotArray<double>& 
       y_lo = std::min(y_lo, y0[k]); y_hi = std::max(y_hi, y0[k]);
       margin = std::min(margin, wall_margin[k]);
     }
-    box_[4 * g] = x_lo; box_[4 * g + 1] = x_hi; box_[4 * g + 2] = y_lo; box_[4 * g + 3] = y_hi;
+    box_[0][4 * g] = x_lo; box_[0][4 * g + 1] = x_hi; box_[0][4 * g + 2] = y_lo; box_[0][4 * g + 3] = y_hi;
     wall_slack_[g] = margin - skin_;
   }
-  const double* b = box_.data();
+  const double* b = box_[0].data();
   by_x_.resize(groups);
   std::iota(by_x_.begin(), by_x_.end(), 0);
   std::sort(by_x_.begin(), by_x_.end(), [&](std::int32_t u, std::int32_t v) { return b[4 * u] < b[4 * v]; });
@@ -49,15 +51,43 @@ void ListDrift::find_groups(const HotArray<double>& x0, const HotArray<double>& 
     }
   }
   found_ = true;
+  split_bounds_.clear();
 }
 
-void ListDrift::measure(const HotArray<double>& x, const HotArray<double>& y,
-                        const HotArray<double>& x0, const HotArray<double>& y0,
-                        std::size_t lo, std::size_t hi) {
+void ListDrift::split(const std::vector<std::int64_t>& bounds) {
+  if (bounds == split_bounds_) return;
+  split_bounds_ = bounds;
+  const std::size_t blocks = bounds.size() - 1;
+  auto block_of = [&](std::int32_t g) {
+    const auto first_disc = static_cast<std::int64_t>(g) * static_cast<std::int64_t>(kGroup);
+    return static_cast<std::size_t>(std::upper_bound(bounds.begin() + 1, bounds.end() - 1, first_disc) - bounds.begin() - 1);
+  };
+  // A stable counting sort by block, the pairs across blocks last.
+  inside_start_.assign(blocks + 2, 0);
+  std::vector<std::size_t> where(near_.size());
+  for (std::size_t q = 0; q < near_.size(); ++q) {
+    const std::size_t a = block_of(near_[q].first), c = block_of(near_[q].second);
+    where[q] = a == c ? a : blocks;
+    ++inside_start_[where[q] + 1];
+  }
+  for (std::size_t t = 0; t + 1 < inside_start_.size(); ++t) inside_start_[t + 1] += inside_start_[t];
+  by_block_.resize(near_.size());
+  std::vector<std::size_t> next(inside_start_.begin(), inside_start_.end() - 1);
+  for (std::size_t q = 0; q < near_.size(); ++q) by_block_[next[where[q]]++] = near_[q];
+}
+
+ListDrift::Partial ListDrift::measure(const HotArray<double>& x, const HotArray<double>& y,
+                                      const HotArray<double>& x0, const HotArray<double>& y0,
+                                      int block, int slot) {
+  const auto lo = static_cast<std::size_t>(split_bounds_[block]);
+  const auto hi = static_cast<std::size_t>(split_bounds_[block + 1]);
   const double* __restrict xs = x.data();
   const double* __restrict ys = y.data();
   const double* __restrict xs0 = x0.data();
   const double* __restrict ys0 = y0.data();
+  double* __restrict box = box_[slot].data();
+  double* __restrict largest2 = largest2_[slot].data();
+  Partial part;
   for (std::size_t g = lo / kGroup; g * kGroup < hi; ++g) {
     constexpr double inf = std::numeric_limits<double>::infinity();
     double ux_lo = inf, ux_hi = -inf, uy_lo = inf, uy_hi = -inf, u2 = 0;
@@ -69,36 +99,42 @@ void ListDrift::measure(const HotArray<double>& x, const HotArray<double>& y,
       uy_lo = std::min(uy_lo, uy); uy_hi = std::max(uy_hi, uy);
       u2 = std::max(u2, ux * ux + uy * uy);
     }
-    box_[4 * g] = ux_lo; box_[4 * g + 1] = ux_hi; box_[4 * g + 2] = uy_lo; box_[4 * g + 3] = uy_hi;
-    largest2_[g] = u2;
+    box[4 * g] = ux_lo; box[4 * g + 1] = ux_hi; box[4 * g + 2] = uy_lo; box[4 * g + 3] = uy_hi;
+    largest2[g] = u2;
+    const double dx = ux_hi - ux_lo, dy = uy_hi - uy_lo;
+    part.pairs2 = std::max(part.pairs2, dx * dx + dy * dy);
+    part.walls = std::max(part.walls, std::sqrt(u2) - wall_slack_[g]);
   }
+  part.pairs2 = std::max(part.pairs2, pairs2_of(inside_start_[block], inside_start_[block + 1], slot));
+  return part;
+}
+
+double ListDrift::pairs2_of(std::size_t from, std::size_t to, int slot) const {
+  const double* b = box_[slot].data();
+  double pairs2 = 0;
+  for (std::size_t q = from; q < to; ++q) {
+    const auto [a, c] = by_block_[q];
+    const double dx = std::max(b[4 * a + 1], b[4 * c + 1]) - std::min(b[4 * a], b[4 * c]);
+    const double dy = std::max(b[4 * a + 3], b[4 * c + 3]) - std::min(b[4 * a + 2], b[4 * c + 2]);
+    pairs2 = std::max(pairs2, dx * dx + dy * dy);
+  }
+  return pairs2;
 }
 
 double ListDrift::closing(const HotArray<double>& x, const HotArray<double>& y,
                           const HotArray<double>& x0, const HotArray<double>& y0,
                           const std::vector<double>& wall_margin, double all_spread) {
   if (!found_) find_groups(x0, y0, wall_margin);
-  measure(x, y, x0, y0, 0, x.size());
-  return bound(all_spread);
+  split({0, static_cast<std::int64_t>(x.size())});
+  return bound(all_spread, measure(x, y, x0, y0, 0, 0), 0);
 }
 
-double ListDrift::bound(double all_spread) const {
+double ListDrift::bound(double all_spread, const Partial& blocks, int slot) const {
   // A spread that is not finite (a state gone bad) must not read as fresh lists.
   if (!(all_spread <= std::numeric_limits<double>::max())) return std::numeric_limits<double>::infinity();
-  const std::size_t groups = largest2_.size();
-  const double* b = box_.data();
-  auto spread2 = [&](std::size_t a, std::size_t c) {
-    const double dx = std::max(b[4 * a + 1], b[4 * c + 1]) - std::min(b[4 * a], b[4 * c]);
-    const double dy = std::max(b[4 * a + 3], b[4 * c + 3]) - std::min(b[4 * a + 2], b[4 * c + 2]);
-    return dx * dx + dy * dy;
-  };
-  double pairs2 = 0, walls = 0;
-  for (std::size_t a = 0; a < groups; ++a) {
-    pairs2 = std::max(pairs2, spread2(a, a));
-    walls = std::max(walls, std::sqrt(largest2_[a]) - wall_slack_[a]);
-  }
-  for (const auto& [a, c] : near_) pairs2 = std::max(pairs2, spread2(a, c));
-  return std::max({std::sqrt(pairs2), all_spread - far_slack_, walls});
+  const std::size_t across = inside_start_[split_bounds_.size() - 1];
+  const double pairs2 = std::max(blocks.pairs2, pairs2_of(across, by_block_.size(), slot));
+  return std::max({std::sqrt(pairs2), all_spread - far_slack_, blocks.walls});
 }
 
 }  // namespace runout

@@ -298,8 +298,7 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
           sphere_inertia(m, rf),
           rng.uniform(-speed, speed), rng.uniform(-speed, speed), 0.0);
   }
-  World world(std::move(p), make_segments(setup.walls), setup.table,
-              step_settings(scene, setup, threads));
+  World world(std::move(p), make_segments(setup.walls), setup.table, step_settings(scene, setup, threads));
 
   // Growth r(t*) = r_final (1 - (1 - seed) exp(-t*/tau_g)), snapped to r_final at 1e-4. Once
   // the pile has collapsed it is damped (PFC local damping, preparation.damping); once E_k/E_p
@@ -315,6 +314,10 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
   const double gravity = scene.integration.gravity;
   const double collapse_time = 2.0 * std::sqrt(2.0 * (y_top + back_x * t) / gravity) / unit_time;  // t*
   for (std::int64_t step = 0;; ++step) {
+    if (phase != Phase::growing && step % check_every != 0) {  // grown: to the check in one advance
+      world.advance(check_every - step % check_every);
+      step += check_every - step % check_every;
+    }
     const double t_star = world.time() / unit_time;
     if (phase == Phase::growing) {
       const double shortfall = (1.0 - seed_fraction) * std::exp(-t_star / prep.growth_time);
@@ -339,13 +342,11 @@ World build_settled_pile(const SceneDef& scene, const SceneSetup& setup, int thr
     world.step();
     if (step % check_every != 0) continue;
     world.check_escape(setup.large_diameter);
-    // As for rest after release (run.cpp): a disc rattling alone on top must not hold up
-    // a settled pile.
+    // As after release (run.cpp): a disc rattling alone on top must not hold up a settled pile.
     const double ratio = mass_kinetic_energy(world.particles(), world.pairs()) / potential_energy(world.particles(), gravity);
     if (progress && step % (10 * check_every) == 0) progress(t_star, ratio);
     const bool quiet = ratio < prep.settle_ek_threshold;
-    // Damping only once the pile has collapsed: damped, the collapse under gravity itself
-    // would be slowed to (1 - damping) g.
+    // Damping only once the pile has collapsed: damped, its fall would be slowed to (1 - damping) g.
     if (phase == Phase::damped && world.settings().local_damping == 0 &&
         (ratio < kDampingOnset * prep.settle_ek_threshold || t_star >= measured.t_star_grown + collapse_time))
       world.set_local_damping(prep.damping);

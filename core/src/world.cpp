@@ -20,6 +20,14 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Waits until `flag` reaches `pass` (an earlier thread may already be a pass further): a
+// short spin (the other thread is nearly always done by now), then yielding, so a run with
+// more threads than cores does not spin away the core the other one needs.
+void wait_for(const std::atomic<std::int64_t>& flag, std::int64_t pass) {
+  for (int spins = 0; flag.load(std::memory_order_acquire) < pass; ++spins)
+    if (spins > 4096) std::this_thread::yield();
+}
+
 }  // namespace
 
 World::World(Particles particles, std::vector<Segment> segments, ContactTable table,
@@ -174,30 +182,78 @@ void World::rebuild_lists() {
   ++profile_.rebuilds;
 }
 
-void World::forces_and_motion(bool forces, double kick, double drift) {
+World::Verdict World::judge(const PassSums& sums, const phases::Motion& motion, bool watched,
+                            const ListDrift::Partial& blocks, int slot) const {
+  // The whole flow's bound (the spread of all displacements for pairs, the largest one for
+  // walls) is cheap; once it is spent, the groups' bound (ListDrift) often is not. It assumes
+  // fixed radii, so not while discs grow.
+  Verdict v;
+  v.list_drift = std::max(motion.spread(), motion.largest());
+  v.spent = v.list_drift + 2 * max_growth_ >= settings_.skin && max_growth_ == 0;
+  if (v.spent && watched) v.list_drift = drift_.bound(motion.spread(), blocks, slot);
+  v.closing = v.spent && !watched;
+  const bool guarded = sums.worst * guard_radius_scale_ > settings_.overlap_guard;  // check_overlap
+  v.go_on = !v.closing && !guarded && motion.finite && v.list_drift + 2 * max_growth_ < settings_.skin;
+  return v;
+}
+
+std::int64_t World::forces_and_motion(bool forces, double kick, double drift, std::int64_t passes) {
   const phases::StepContext ctx{settings_, table_, segments_};
   const auto n = static_cast<std::int64_t>(particles_.size());
   const bool ledger = forces && settings_.track_energy;
-  if (ledger) ledger_blocks_.size_for(pairs_, wall_contacts_);
-  auto contacts = [&](std::int64_t pair_lo, std::int64_t pair_hi, std::int64_t wall_lo, std::int64_t wall_hi) {
+  if (ledger)
+    for (auto& blocks : ledger_blocks_) blocks.size_for(pairs_, wall_contacts_);
+  auto contacts = [&](std::int64_t pair_lo, std::int64_t pair_hi, std::int64_t wall_lo,
+                      std::int64_t wall_hi, int slot) {
     return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
-                                  {pair_lo, pair_hi, wall_lo, wall_hi}, ledger_blocks_);
+                                  {pair_lo, pair_hi, wall_lo, wall_hi}, ledger_blocks_[slot]);
   };
   auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
     return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
                            y_at_rebuild_, lo, hi, forces, kick, drift);
   };
-  const auto t0 = Clock::now();
-  PassSums sums;
-  phases::Motion motion;
-  double forces_seconds = 0;  // thread 0's
+  // Each block's outcome on a cache line of its own, by pass parity (a thread may write the
+  // next pass's while another still reads this one's), a handful on the stack: arrays of
+  // kMaxThreads (20 KB set every pass) pushed the step's own data out of L1.
+  struct alignas(64) Outcome {
+    PassSums sums;
+    phases::Motion motion;
+    ListDrift::Partial drift;
+  };
+  constexpr int kOnStack = 8;
   const int T = settings_.threads;
-  bool watched = false;  // the groups' displacements were measured in the step's region
+  Outcome on_stack[2 * kOnStack];
+  std::vector<Outcome> on_heap(T > kOnStack ? 2 * static_cast<std::size_t>(T) : 0);
+  Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
+  // Thread 0 keeps the last pass's outcome and verdict, and the region's totals.
+  PassSums last_sums;
+  phases::Motion last_motion;
+  Verdict last;
+  std::int64_t done = 0;
+  double forces_seconds = 0;  // thread 0's
+  const auto t0 = Clock::now();
+  // What thread 0 keeps of each pass, once every block's outcome is out.
+  auto settle = [&](int slot, const Verdict& v, const PassSums& sums, const phases::Motion& m) {
+    if (ledger) {
+      const PassSums total = ledger_blocks_[slot].total();
+      ledger_.normal += total.loss_normal;
+      ledger_.friction += total.loss_friction;
+      ledger_.rolling += total.loss_rolling;
+    }
+    if (forces) peak_impact_overlap_ = std::max(peak_impact_overlap_, sums.worst * guard_radius_scale_);
+    last = v;
+    last_sums = sums;
+    last_motion = m;
+    ++done;
+  };
   if (T == 1) {
     handoff_.release(pairs_, runs_, lists_version_);
-    if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()));
+    const int slot = static_cast<int>(++passes_ & 1);
+    PassSums sums;
+    if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), slot);
     forces_seconds = seconds_since(t0);
-    motion = motion_of(0, n);
+    const phases::Motion motion = motion_of(0, n);
+    settle(slot, judge(sums, motion, false, {}, slot), sums, motion);
   } else {
     // Thread t takes the discs of block t for the whole step: the contacts of their rows, then
     // their sums, kick and drift. A disc's sum reads only rows of its own or earlier blocks
@@ -207,99 +263,93 @@ void World::forces_and_motion(bool forces, double kick, double drift) {
     const std::vector<std::int64_t>& b = blocks_.bounds();
     if (!handoff_.current(lists_version_, blocks_.version(), T))
       handoff_.find(pairs_, wall_contacts_, runs_, b, lists_version_, blocks_.version());
-    const std::int64_t pass = ++passes_;
+    passes = std::min<std::int64_t>(passes, blocks_.steps_before_turn());
+    const std::int64_t first_pass = passes_ + 1;
     // Once the whole flow's bound is spent, each thread measures its own groups' displacements
     // for the groups' bound (ListDrift; a block is whole groups).
     static_assert(DiscRuns::kWindow % ListDrift::kGroup == 0);
-    watched = watch_groups_ && drift_.found();
-    // Each block's outcome on a cache line of its own, a handful on the stack: arrays of
-    // kMaxThreads (20 KB set every pass) pushed the step's own data out of L1.
-    struct alignas(64) Outcome {
-      PassSums sums;
-      phases::Motion motion;
-    };
-    constexpr int kOnStack = 8;
-    Outcome on_stack[kOnStack];
-    std::vector<Outcome> on_heap(T > kOnStack ? static_cast<std::size_t>(T) : 0);
-    Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
+    const bool groups_found = drift_.found();
+    if (groups_found) drift_.split(b);
     // Each thread's time is counted from the region's start, so the balancer also weighs how
     // late a thread starts (waking the team costs the later threads a few microseconds a step):
     // it then evens out when the threads finish, not only how long they compute.
     const auto region_start = Clock::now();
-    auto share = [&](int t, bool together) {
+    auto share = [&](int t, std::int64_t pass, bool watched, bool from_region_start) {
+      const int slot = static_cast<int>(pass & 1);
+      Outcome& mine = out[slot * T + t];
       const auto start = Clock::now();
-      const auto counted_from = together ? region_start : start;
+      const auto counted_from = from_region_start ? region_start : start;
       const ContactRange& r = handoff_.range[t];
       const std::int64_t split = handoff_.boundary_pair[t];
       if (forces) {
-        out[t].sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi);
+        mine.sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi, slot);
         handoff_.publish(t, pairs_);
       }
       ready_.flag[t].pass.store(pass, std::memory_order_release);
-      if (forces) out[t].sums.worst = std::max(out[t].sums.worst, contacts(r.pair_lo, split, 0, 0).worst);
-      if (t == 0) forces_seconds = seconds_since(start);
-      // First the discs no earlier thread's contacts reach, then (once those are done) the rest.
+      if (forces) mine.sums.worst = std::max(mine.sums.worst, contacts(r.pair_lo, split, 0, 0, slot).worst);
+      if (t == 0) forces_seconds += seconds_since(start);
+      // First (once the earlier threads' boundary pairs are done) the discs their contacts
+      // reach, then the rest: the reached discs' lines, which the earlier thread read, then
+      // come back to this core while the rest move, not while the pass's end waits for them
+      // (docs/performance.md, twenty-first session). The earlier thread's crossing pushes
+      // are nearly always ready by now.
       const std::int64_t mid = handoff_.first_free[t];
-      // The earlier thread's crossing pushes are nearly always ready by now: fetched while
-      // the discs nothing reaches move, they are in this core's cache when their sums need
-      // them (0.2-0.6 us a pass, docs/performance.md, sixteenth session).
       if (forces && t > 0 && ready_.flag[t - 1].pass.load(std::memory_order_acquire) == pass)
         handoff_.prefetch(t - 1, pairs_);
-      const phases::Motion late = motion_of(mid, b[t + 1]);
-      auto busy = seconds_since(counted_from);
-      // A short spin (the earlier thread is nearly always done by now), then yielding, so a
-      // run with more threads than cores does not spin away the core the other one needs.
-      for (int u = 0; u < t; ++u)
-        for (int spins = 0; ready_.flag[u].pass.load(std::memory_order_acquire) != pass; ++spins)
-          if (spins > 4096) std::this_thread::yield();
+      const auto busy = seconds_since(counted_from);
+      for (int u = 0; u < t; ++u) wait_for(ready_.flag[u].pass, pass);
       const auto resumed = Clock::now();
-      out[t].motion = phases::Motion::merge(motion_of(b[t], mid), late);
-      if (watched)
-        drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
-                       static_cast<std::size_t>(b[t]), static_cast<std::size_t>(b[t + 1]));
+      const phases::Motion reached = motion_of(b[t], mid);
+      mine.motion = phases::Motion::merge(reached, motion_of(mid, b[t + 1]));
+      if (watched) mine.drift = drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_, t, slot);
       blocks_.record(t, busy + seconds_since(resumed));
+      ready_.flag[t].done.store(pass, std::memory_order_release);
     };
 #pragma omp parallel num_threads(T)
     {
       // A smaller team than asked (an OpenMP limit) cannot hand off between its own blocks
       // in this order: one thread then takes every block in turn.
       const int team = omp_get_num_threads(), me = omp_get_thread_num();
-      if (team == T) share(me, true);
-      else if (me == 0)
-        for (int t = 0; t < T; ++t) share(t, false);
+      bool watched = watch_groups_ && groups_found;
+      for (std::int64_t pass = first_pass; pass < first_pass + passes; ++pass) {
+        if (team == T) share(me, pass, watched, pass == first_pass);
+        else if (me == 0)
+          for (int t = 0; t < T; ++t) share(t, pass, watched, false);
+        // Every block's outcome, merged in block order: each thread judges the pass alike.
+        const int slot = static_cast<int>(pass & 1);
+        PassSums sums;
+        phases::Motion motion;
+        ListDrift::Partial blocks;
+        for (int t = 0; t < T; ++t) {
+          wait_for(ready_.flag[t].done, pass);
+          const Outcome& o = out[slot * T + t];
+          sums.worst = std::max(sums.worst, o.sums.worst);
+          motion = t == 0 ? o.motion : phases::Motion::merge(motion, o.motion);
+          blocks = ListDrift::Partial::merge(blocks, o.drift);
+        }
+        const Verdict v = judge(sums, motion, watched, blocks, slot);
+        if (me == 0) settle(slot, v, sums, motion);
+        if (!v.go_on) break;
+        watched = v.spent && groups_found;
+      }
     }
-    for (int t = 0; t < T; ++t) {
-      sums.worst = std::max(sums.worst, out[t].sums.worst);
-      motion = t == 0 ? out[0].motion : phases::Motion::merge(motion, out[t].motion);
-    }
-    blocks_.after_step(pairs_, wall_contacts_, runs_);
+    passes_ += done;
+    for (std::int64_t s = 0; s < done; ++s) blocks_.after_step(pairs_, wall_contacts_, runs_);
   }
-  if (ledger) {
-    const PassSums total = ledger_blocks_.total();
-    ledger_.normal += total.loss_normal;
-    ledger_.friction += total.loss_friction;
-    ledger_.rolling += total.loss_rolling;
-  }
-  // The whole flow's bound (the spread of all displacements for pairs, the largest one for
-  // walls) is cheap; once it is spent, the groups' bound (ListDrift) often is not. It assumes
-  // fixed radii, so not while discs grow.
-  list_drift_ = std::max(motion.spread(), motion.largest());
-  const bool spent = list_drift_ + 2 * max_growth_ >= settings_.skin && max_growth_ == 0;
-  if (spent)
-    list_drift_ = watched ? drift_.bound(motion.spread())
-                          : drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
-                                           search_.wall_margin(), motion.spread());
-  watch_groups_ = spent;
-  finite_ = motion.finite;
+  list_drift_ = last.closing ? drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
+                                              search_.wall_margin(), last_motion.spread())
+                             : last.list_drift;
+  watch_groups_ = last.spent;
+  finite_ = last_motion.finite;
   profile_.contact_forces += forces_seconds;
   profile_.integrate += seconds_since(t0) - forces_seconds;
-  if (forces) check_overlap(sums.worst);
+  if (forces) check_overlap(last_sums.worst);
+  return done;
 }
 
 // Symplectic Euler (the seed's, eqs. 2.15–2.18): [rebuild] forces, kick dt, drift dt.
 // Velocity Verlet: kick dt/2 + drift dt, [rebuild] forces, kick dt/2.
-void World::step() {
-  if (settings_.reorder_every > 0 && steps_ % settings_.reorder_every == 0) reorder_discs();
+void World::advance(std::int64_t steps) {
   // The lists hold every pair and disc–wall pair within the skin at the rebuild (SPEC §5). An
   // unlisted pair can touch only once the two have come closer by the skin less their growth:
   // list_drift bounds how much closer any two discs, or a disc and a fixed wall, have come
@@ -309,21 +359,31 @@ void World::step() {
   auto rebuild_if_moved = [&] {
     if (!lists_valid_ || list_drift_ + 2 * max_growth_ >= settings_.skin) rebuild_lists();
   };
-  if (settings_.integrator == IntegratorKind::symplectic_euler) {
-    rebuild_if_moved();
-    forces_and_motion(true, dt, dt);
-  } else {
-    if (!lists_valid_) {  // first step: accelerations at the initial state
-      rebuild_lists();
-      forces_and_motion(true, 0.0, 0.0);
+  while (steps > 0) {
+    const std::int64_t reorder = settings_.reorder_every;
+    if (reorder > 0 && steps_ % reorder == 0) reorder_discs();
+    std::int64_t taken = 1;
+    if (settings_.integrator == IntegratorKind::symplectic_euler) {
+      rebuild_if_moved();
+      // Up to the next reordering (a step's own start).
+      const std::int64_t before_reorder = reorder > 0 ? reorder - steps_ % reorder : steps;
+      taken = forces_and_motion(true, dt, dt, std::min(steps, before_reorder));
+    } else {
+      if (!lists_valid_) {  // first step: accelerations at the initial state
+        rebuild_lists();
+        forces_and_motion(true, 0.0, 0.0, 1);
+      }
+      forces_and_motion(false, 0.5 * dt, dt, 1);
+      rebuild_if_moved();
+      forces_and_motion(true, 0.5 * dt, 0.0, 1);
     }
-    forces_and_motion(false, 0.5 * dt, dt);
-    rebuild_if_moved();
-    forces_and_motion(true, 0.5 * dt, 0.0);
+    for (std::int64_t s = 0; s < taken; ++s) {
+      time_ += dt;
+      ++steps_;
+    }
+    steps -= taken;
+    check_finite();
   }
-  time_ += dt;
-  ++steps_;
-  check_finite();
 }
 
 }  // namespace runout

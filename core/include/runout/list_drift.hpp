@@ -11,7 +11,9 @@
 // (World::reorder_discs), so a group is compact.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -36,25 +38,43 @@ class ListDrift {
   double closing(const HotArray<double>& x, const HotArray<double>& y,
                  const HotArray<double>& x0, const HotArray<double>& y0,
                  const std::vector<double>& wall_margin, double all_spread);
-  // The same in two parts, so threads can measure their own discs side by side: once the
-  // groups are found (since the last `closing`, no rebuild), each group's box of
-  // displacements for the discs [lo, hi) (lo starts a group), then the bound from them all.
+  // The same in parts, so threads measure their own discs side by side: once the groups are
+  // found (since the last `closing`, no rebuild), `split` by the threads' blocks of discs
+  // (whole groups); each block's `measure` then boxes its groups' displacements and takes
+  // the bound's terms within the block (its groups and the near pairs inside it), and
+  // `bound` adds the near pairs across blocks. The boxes are kept in two slots, so a thread
+  // may measure a step's discs in one while the others still take the step before's bound
+  // from the other (World::forces_and_motion: a region of several steps).
+  static constexpr int kSlots = 2;
+  struct Partial {  // a block's terms: the largest squared spread, the largest wall closing
+    double pairs2 = 0, walls = -std::numeric_limits<double>::infinity();
+    static Partial merge(const Partial& a, const Partial& b) {
+      return {std::max(a.pairs2, b.pairs2), std::max(a.walls, b.walls)};
+    }
+  };
   bool found() const { return found_; }
-  void measure(const HotArray<double>& x, const HotArray<double>& y,
-               const HotArray<double>& x0, const HotArray<double>& y0, std::size_t lo,
-               std::size_t hi);
-  double bound(double all_spread) const;
+  void split(const std::vector<std::int64_t>& bounds);
+  Partial measure(const HotArray<double>& x, const HotArray<double>& y,
+                  const HotArray<double>& x0, const HotArray<double>& y0, int block, int slot);
+  double bound(double all_spread, const Partial& blocks, int slot) const;
 
  private:
   void find_groups(const HotArray<double>& x0, const HotArray<double>& y0,
                    const std::vector<double>& wall_margin);
+  // The largest squared spread of the near pairs by_block_[from, to) (their boxes in `slot`).
+  double pairs2_of(std::size_t from, std::size_t to, int slot) const;
 
   double reach_ = 0, far_slack_ = 0, skin_ = 0;
   bool found_ = false;
-  std::vector<double> box_;                      // 4 per group: centres, then displacements
-  std::vector<double> largest2_;                 // per group: its largest |u|^2
+  std::vector<double> box_[kSlots];              // 4 per group: centres, then displacements
+  std::vector<double> largest2_[kSlots];         // per group: its largest |u|^2
   std::vector<double> wall_slack_;               // per group: its smallest wall margin less the skin
   std::vector<std::pair<std::int32_t, std::int32_t>> near_;  // pairs of groups near each other
+  // By `split`: the blocks' ends, the near pairs inside each block (block t's from
+  // inside_start_[t]) and then those across blocks (from inside_start_[blocks]).
+  std::vector<std::int64_t> split_bounds_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> by_block_;
+  std::vector<std::size_t> inside_start_;
   std::vector<std::int32_t> by_x_;
 };
 

@@ -36,6 +36,9 @@ class LoadBalance {
   // follows its measured speed (work done per busy second, smoothed over a few periods);
   // ends that would each move by one window at most stay (jitter, load_balance.cpp).
   void after_step(const PairContacts& pairs, const WallContacts& walls, const DiscRuns& runs);
+  // Steps from now to the one whose after_step may move the ends (that step included): a
+  // parallel region of several steps ends there (World::forces_and_motion).
+  int steps_before_turn() const { return kPeriod - steps_; }
   // Changes whenever the blocks move.
   std::int64_t version() const { return version_; }
 

@@ -91,6 +91,9 @@ class AvalancheRun {
   };
   void fire_observers();
   void share_cores();
+  // Steps the run can take before it must look again: up to the next sample, observer time,
+  // end time or check (every `check_every` steps), never past one (World::advance).
+  std::int64_t steps_to_look(std::int64_t check_every) const;
   bool finished();
   void freeze_rest();
   RunResult result(double wall_seconds) const;

@@ -106,12 +106,19 @@ struct EnergyState {
 
 inline constexpr int kMaxThreads = 256;
 
+namespace phases { struct Motion; }  // step_phases.hpp
+
 class World {
  public:
   World(Particles particles, std::vector<Segment> segments, ContactTable table,
         StepSettings settings);
 
-  void step();
+  void step() { advance(1); }
+  // `steps` steps, as many of them as can be in one parallel region together: a region ends
+  // only where the lists must be rebuilt or the blocks move (every LoadBalance::kPeriod
+  // steps), so the team is not started and joined at every step (docs/performance.md,
+  // issue 11, twenty-first session). The same bits as `steps` calls of step().
+  void advance(std::int64_t steps);
 
   const Particles& particles() const { return particles_; }
   const std::vector<Segment>& segments() const { return segments_; }
@@ -160,8 +167,19 @@ class World {
   void reorder_discs();
   // With `forces`: contact forces, then a from the contact sums; then kick v += a kick and
   // drift x += v drift. One parallel region: each thread takes its block of discs (blocks_)
-  // and hands the rows that reach the next block to its thread (Handoff).
-  void forces_and_motion(bool forces, double kick, double drift);
+  // and hands the rows that reach the next block to its thread (Handoff). Up to `passes`
+  // such passes in the region, while the lists hold and the blocks stay; returns how many.
+  std::int64_t forces_and_motion(bool forces, double kick, double drift, std::int64_t passes);
+  // What a pass means for the next one; every thread of a region works out the same.
+  struct Verdict {
+    double list_drift = 0;  // list_drift_ after the pass (see below)
+    bool spent = false;     // the whole flow's bound is spent: the groups' bound counts
+    bool closing = false;   // ... and must first be measured over all discs (ListDrift::closing)
+    bool go_on = false;     // the lists hold, the state is finite, no guard tripped
+  };
+  // `watched`: the blocks measured their groups into `slot`, with their terms in `blocks`.
+  Verdict judge(const PassSums& sums, const phases::Motion& motion, bool watched,
+                const ListDrift::Partial& blocks, int slot) const;
   void check_finite() const;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
@@ -194,7 +212,7 @@ class World {
   double guard_radius_scale_ = 1.0;
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
-  LedgerBlocks ledger_blocks_;
+  LedgerBlocks ledger_blocks_[2];  // by pass parity: one pass's sums are read as the next is written
   // Each thread's block of discs for a whole step (load_balance.hpp) and what hands one
   // block's results to the next (World::forces_and_motion).
   LoadBalance blocks_{LoadBalance::Work::step};
@@ -204,12 +222,16 @@ class World {
   // so does a world assigned over: its pass count is the assigned one's, and a flag left at a
   // pass it reaches later would let a thread skip its wait.
   struct ReadyFlags {
-    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}; };
+    // `pass`: the boundary pairs are done; `done`: the whole pass is (its outcome is out).
+    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}, done{-1}; };
     std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
     ReadyFlags() = default;
     ReadyFlags(const ReadyFlags&) : ReadyFlags() {}
     ReadyFlags& operator=(const ReadyFlags&) {
-      for (int t = 0; t < kMaxThreads; ++t) flag[t].pass.store(-1, std::memory_order_relaxed);
+      for (int t = 0; t < kMaxThreads; ++t) {
+        flag[t].pass.store(-1, std::memory_order_relaxed);
+        flag[t].done.store(-1, std::memory_order_relaxed);
+      }
       return *this;
     }
   } ready_;
