@@ -137,8 +137,6 @@ void AvalancheRun::fire_observers() {
   }
 }
 
-// While the observers' helpers work, the physics leaves them the cores it would otherwise
-// share with them (Observer::helper_cores).
 std::int64_t AvalancheRun::steps_to_look(std::int64_t check_every) const {
   std::int64_t steps = check_every - world_.step_count() % check_every;
   // A time is due on the first step whose t* is within half a step of it. Counting the steps
@@ -158,6 +156,8 @@ std::int64_t AvalancheRun::steps_to_look(std::int64_t check_every) const {
   return steps;
 }
 
+// While the observers' helpers work, the physics leaves them the cores it would otherwise
+// share with them (Observer::helper_cores).
 void AvalancheRun::share_cores() {
   int helpers = 0;
   for (auto& s : observers_) helpers += s.observer->helper_cores();

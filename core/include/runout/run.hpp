@@ -66,8 +66,9 @@ class AvalancheRun {
   void set_progress(std::function<void(double, double, double)> progress) { progress_ = std::move(progress); }
   // The run goes on at least until this t* even once at rest (the last requested snapshot).
   void set_min_end_time(double t_star) { min_end_time_ = t_star; }
-  // Looked at after every step; once non-zero the run stops there, before that step's rest
-  // test, so its state is a checkpoint's and a resume continues exactly (SIGINT, SIGTERM).
+  // Looked at between steps (at least every 1/20 t*); once non-zero the run stops there,
+  // before that step's rest test, so its state is a checkpoint's and a resume continues
+  // exactly (SIGINT, SIGTERM).
   void set_stop_request(const std::atomic<int>* flag) { stop_request_ = flag; }
   // The physics' thread count follows the governor's advice, asked between steps (about every
   // 1/20 t*); `changed(t*, threads, cores_used)` hears of each change. The trajectory does not
