@@ -17,10 +17,7 @@ void ListDrift::rebuilt(double largest_radius, double skin) {
 void ListDrift::find_groups(const HotArray<double>& x0, const HotArray<double>& y0,
                             const std::vector<double>& wall_margin) {
   const std::size_t n = x0.size(), groups = (n + kGroup - 1) / kGroup;
-  for (int slot = 0; slot < kSlots; ++slot) {
-    box_[slot].resize(4 * groups);
-    largest2_[slot].resize(groups);
-  }
+  for (auto& box : box_) box.resize(4 * groups);
   wall_slack_.resize(groups);
   // Each group's box of centres at the rebuild, then the groups near it by a sweep along x.
   for (std::size_t g = 0; g < groups; ++g) {
@@ -70,7 +67,7 @@ void ListDrift::split(const std::vector<std::int64_t>& bounds) {
     where[q] = a == c ? a : blocks;
     ++inside_start_[where[q] + 1];
   }
-  for (std::size_t t = 0; t + 1 < inside_start_.size(); ++t) inside_start_[t + 1] += inside_start_[t];
+  std::partial_sum(inside_start_.begin(), inside_start_.end(), inside_start_.begin());
   by_block_.resize(near_.size());
   std::vector<std::size_t> next(inside_start_.begin(), inside_start_.end() - 1);
   for (std::size_t q = 0; q < near_.size(); ++q) by_block_[next[where[q]]++] = near_[q];
@@ -86,7 +83,6 @@ ListDrift::Partial ListDrift::measure(const HotArray<double>& x, const HotArray<
   const double* __restrict xs0 = x0.data();
   const double* __restrict ys0 = y0.data();
   double* __restrict box = box_[slot].data();
-  double* __restrict largest2 = largest2_[slot].data();
   Partial part;
   for (std::size_t g = lo / kGroup; g * kGroup < hi; ++g) {
     constexpr double inf = std::numeric_limits<double>::infinity();
@@ -100,7 +96,6 @@ ListDrift::Partial ListDrift::measure(const HotArray<double>& x, const HotArray<
       u2 = std::max(u2, ux * ux + uy * uy);
     }
     box[4 * g] = ux_lo; box[4 * g + 1] = ux_hi; box[4 * g + 2] = uy_lo; box[4 * g + 3] = uy_hi;
-    largest2[g] = u2;
     const double dx = ux_hi - ux_lo, dy = uy_hi - uy_lo;
     part.pairs2 = std::max(part.pairs2, dx * dx + dy * dy);
     part.walls = std::max(part.walls, std::sqrt(u2) - wall_slack_[g]);

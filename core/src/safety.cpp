@@ -12,9 +12,8 @@ namespace runout {
 // SPEC §8: an overlap beyond the guard means the contact is far stiffer-demanding than the
 // stiffness was designed for (too fast an impact, too large a step): stop with advice.
 void World::check_overlap(double worst) {
+  if (!beyond_guard(worst)) return;
   worst *= guard_radius_scale_;
-  peak_impact_overlap_ = std::max(peak_impact_overlap_, worst);
-  if (!(worst > settings_.overlap_guard)) return;
   const auto& p = particles_;
   std::int64_t a = -1, b = -1;
   double found = 0;

@@ -192,8 +192,7 @@ World::Verdict World::judge(const PassSums& sums, const phases::Motion& motion, 
   v.spent = v.list_drift + 2 * max_growth_ >= settings_.skin && max_growth_ == 0;
   if (v.spent && watched) v.list_drift = drift_.bound(motion.spread(), blocks, slot);
   v.closing = v.spent && !watched;
-  const bool guarded = sums.worst * guard_radius_scale_ > settings_.overlap_guard;  // check_overlap
-  v.go_on = !v.closing && !guarded && motion.finite && v.list_drift + 2 * max_growth_ < settings_.skin;
+  v.go_on = !v.closing && !beyond_guard(sums.worst) && motion.finite && v.list_drift + 2 * max_growth_ < settings_.skin;
   return v;
 }
 
@@ -270,9 +269,10 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     static_assert(DiscRuns::kWindow % ListDrift::kGroup == 0);
     const bool groups_found = drift_.found();
     if (groups_found) drift_.split(b);
-    // Each thread's time is counted from the region's start, so the balancer also weighs how
-    // late a thread starts (waking the team costs the later threads a few microseconds a step):
-    // it then evens out when the threads finish, not only how long they compute.
+    // In a region's first step each thread's time is counted from the region's start, so the
+    // balancer also weighs how late a thread starts (waking the team costs the later threads a
+    // few microseconds): it then evens out when the threads finish, not only how long they
+    // compute. Later steps count from each thread's own start.
     const auto region_start = Clock::now();
     auto share = [&](int t, std::int64_t pass, bool watched, bool from_region_start) {
       const int slot = static_cast<int>(pass & 1);
@@ -377,7 +377,7 @@ void World::advance(std::int64_t steps) {
       rebuild_if_moved();
       forces_and_motion(true, 0.5 * dt, 0.0, 1);
     }
-    for (std::int64_t s = 0; s < taken; ++s) {
+    for (std::int64_t s = 0; s < taken; ++s) {  // added step by step: one step's bits
       time_ += dt;
       ++steps_;
     }

@@ -67,7 +67,6 @@ class ListDrift {
   double reach_ = 0, far_slack_ = 0, skin_ = 0;
   bool found_ = false;
   std::vector<double> box_[kSlots];              // 4 per group: centres, then displacements
-  std::vector<double> largest2_[kSlots];         // per group: its largest |u|^2
   std::vector<double> wall_slack_;               // per group: its smallest wall margin less the skin
   std::vector<std::pair<std::int32_t, std::int32_t>> near_;  // pairs of groups near each other
   // By `split`: the blocks' ends, the near pairs inside each block (block t's from

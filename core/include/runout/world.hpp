@@ -187,6 +187,8 @@ class World {
   void check_escape(double margin) const;
  private:
   void check_overlap(double worst);
+  // Whether a pass's largest guarded overlap share (or a NaN) is beyond the guard.
+  bool beyond_guard(double worst) const { return !(worst * guard_radius_scale_ <= settings_.overlap_guard); }
 
   Particles particles_;
   std::vector<Segment> segments_;
