@@ -235,9 +235,10 @@ void energy_of(const Source& source, const typename Model::Tables& tables,
 }  // namespace
 
 ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
-                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n) {
-  // The contacts of the block's rows, both ends moved to the next block end: the block ends
-  // of consecutive disc blocks meet, so every contact is taken once.
+                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n,
+                           ContactGrain grain) {
+  // The contacts of the block's rows, both ends moved to the grain's next end: the ends of
+  // consecutive disc blocks meet, so every contact is taken once.
   auto at = [&](const HotArray<std::int32_t>& row_start, std::int64_t disc, std::int64_t count,
                 std::int64_t block) {
     if (disc >= n) return count;
@@ -245,10 +246,10 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
     return std::min(count, (q + block - 1) / block * block);
   };
   const auto np = static_cast<std::int64_t>(pairs.size()), nw = static_cast<std::int64_t>(walls.size());
-  return {at(pairs.row_start, disc_lo, np, kPairLedgerBlock),
-          at(pairs.row_start, disc_hi, np, kPairLedgerBlock),
-          at(walls.row_start, disc_lo, nw, kWallLedgerBlock),
-          at(walls.row_start, disc_hi, nw, kWallLedgerBlock)};
+  return {at(pairs.row_start, disc_lo, np, grain.pairs),
+          at(pairs.row_start, disc_hi, np, grain.pairs),
+          at(walls.row_start, disc_lo, nw, grain.walls),
+          at(walls.row_start, disc_hi, nw, grain.walls)};
 }
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,

@@ -10,7 +10,7 @@ namespace runout {
 
 void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& runs,
                    const std::vector<std::int64_t>& b, std::int64_t lists_version,
-                   std::int64_t blocks_version) {
+                   std::int64_t blocks_version, ContactGrain grain) {
   release(pairs, runs, lists_version);
   const std::int64_t n = b.back();
   const int T = static_cast<int>(b.size()) - 1;
@@ -21,7 +21,7 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
   crossing_start_.assign(static_cast<std::size_t>(T) + 1, 0);
   std::int64_t reached = 0;  // the end of the discs the threads before t reach
   for (int t = 0; t < T; ++t) {
-    const ContactRange r = phases::contact_range(pairs, walls, b[t], b[t + 1], n);
+    const ContactRange r = phases::contact_range(pairs, walls, b[t], b[t + 1], n, grain);
     range[t] = r;
     // Block t's discs below what earlier threads reach wait for them; windows of lanes whole.
     constexpr std::int64_t W = DiscRuns::kWindow;
@@ -37,11 +37,11 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
         crossing_.push_back(static_cast<std::int32_t>(q));
       }
     // The walls of the range are all computed before the flag; their discs may be beyond the
-    // block where the range's end was moved up to a ledger block's end.
+    // block where the range's end was moved up to the grain's end.
     for (std::int64_t q = r.wall_lo; q < r.wall_hi; ++q)
       reach = std::max<std::int64_t>(reach, walls.disc[q] + 1);
-    // A whole ledger block, so the ledger's blocks are each computed in one piece.
-    boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / kPairLedgerBlock * kPairLedgerBlock));
+    // At the grain, so the ledger's blocks are each computed in one piece.
+    boundary_pair[t] = std::min(r.pair_hi, std::max(r.pair_lo, first / grain.pairs * grain.pairs));
     reached = std::max(reached, reach);
     crossing_start_[t + 1] = static_cast<std::int64_t>(crossing_.size());
   }
@@ -55,6 +55,7 @@ void Handoff::find(PairContacts& pairs, const WallContacts& walls, DiscRuns& run
     runs.source[runs.incoming[crossing_[c]]] = static_cast<std::int32_t>(area + c);
   lists_ = lists_version;
   blocks_ = blocks_version;
+  grain_ = grain;
 }
 
 void Handoff::publish(int t, PairContacts& pairs) const {

@@ -18,10 +18,11 @@ struct StepContext {
 };
 
 // The contacts a thread computes for its block of discs [disc_lo, disc_hi): the pairs of the
-// block's rows and its discs' wall contacts, each end moved up to a ledger block's end.
+// block's rows and its discs' wall contacts, each end moved up to the grain's next end.
 using runout::ContactRange;
 ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
-                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n);
+                           std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n,
+                           ContactGrain grain);
 
 // Contact forces of the range's pairs and disc–wall contacts (contact_forces.cpp): writes the
 // per-contact forces and torques and updates the history. Returns the largest guarded

@@ -260,8 +260,9 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // their rows reach its discs (the handoff), and each thread computes those rows first.
     blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
     const std::vector<std::int64_t>& b = blocks_.bounds();
-    if (!handoff_.current(lists_version_, blocks_.version(), T))
-      handoff_.find(pairs_, wall_contacts_, runs_, b, lists_version_, blocks_.version());
+    const ContactGrain grain = contact_grain(settings_.track_energy);
+    if (!handoff_.current(lists_version_, blocks_.version(), grain, T))
+      handoff_.find(pairs_, wall_contacts_, runs_, b, lists_version_, blocks_.version(), grain);
     passes = std::min<std::int64_t>(passes, blocks_.steps_before_turn());
     const std::int64_t first_pass = passes_ + 1;
     // Once the whole flow's bound is spent, each thread measures its own groups' displacements

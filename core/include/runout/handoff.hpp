@@ -20,6 +20,26 @@
 
 namespace runout {
 
+// The ledger sums its losses per fixed block of contacts (LedgerBlocks, world.hpp), each
+// computed by one thread in one piece, so a thread's contacts end at a block end. A block is
+// then also how far a thread's contacts reach into the next thread's discs, whose state
+// crosses between the cores every step: small blocks keep that short (64 pairs rather than
+// 256 took ~1.2 us off a two-thread step; docs/performance.md, fifteenth session).
+inline constexpr std::int64_t kPairLedgerBlock = 64;
+inline constexpr std::int64_t kWallLedgerBlock = 16;
+// Where a thread's contacts may end. Without the ledger nothing is summed in blocks: a
+// thread's pairs end at a cache line of pushes (8) and its wall contacts exactly at its
+// block's last disc. A wall block of 16 held the floor discs of ~15 later columns, so the
+// later thread's first ~370 discs waited for the earlier thread's flag, not ~170 (the bench
+// pile; docs/performance.md, twenty-second session).
+struct ContactGrain {
+  std::int64_t pairs = kPairLedgerBlock, walls = kWallLedgerBlock;
+  bool operator==(const ContactGrain&) const = default;
+};
+inline ContactGrain contact_grain(bool ledger) {
+  return ledger ? ContactGrain{} : ContactGrain{8, 1};
+}
+
 // Pairs [pair_lo, pair_hi) and wall contacts [wall_lo, wall_hi): what one thread computes.
 struct ContactRange {
   std::int64_t pair_lo = 0, pair_hi = 0, wall_lo = 0, wall_hi = 0;
@@ -27,9 +47,10 @@ struct ContactRange {
 
 class Handoff {
  public:
-  // Whether find() was called for these lists, blocks and thread count.
-  bool current(std::int64_t lists_version, std::int64_t blocks_version, int threads) const {
-    return lists_ == lists_version && blocks_ == blocks_version &&
+  // Whether find() was called for these lists, blocks, grain and thread count.
+  bool current(std::int64_t lists_version, std::int64_t blocks_version, ContactGrain grain,
+               int threads) const {
+    return lists_ == lists_version && blocks_ == blocks_version && grain_ == grain &&
            range.size() == static_cast<std::size_t>(threads);
   }
   // Each thread's contacts for the blocks `bounds` (bounds[t], bounds[t + 1]) of the current
@@ -38,7 +59,7 @@ class Handoff {
   // runs pointed there). The runs must be those of `lists_version`.
   void find(PairContacts& pairs, const WallContacts& walls, DiscRuns& runs,
             const std::vector<std::int64_t>& bounds, std::int64_t lists_version,
-            std::int64_t blocks_version);
+            std::int64_t blocks_version, ContactGrain grain);
   // Copies thread t's crossing pushes into the packed area; after its boundary pairs and
   // before its flag.
   void publish(int t, PairContacts& pairs) const;
@@ -54,6 +75,7 @@ class Handoff {
 
  private:
   std::int64_t lists_ = -1, blocks_ = -1;  // the versions found for
+  ContactGrain grain_;
   // The crossing pairs, thread by thread: thread t's are crossing_[crossing_start_[t] ..
   // crossing_start_[t + 1]), the i-th of them packed at pushes index 2 size() + 1 + i.
   std::vector<std::int32_t> crossing_;

@@ -71,15 +71,9 @@ struct PassSums {
   }
 };
 
-// The force pass's ledger sums per fixed block of contacts, added in block order whatever
-// thread computed each block (contact_forces.cpp): scratch of the World. A thread's contacts
-// end at a block end, so a block is also how far a thread's contacts reach into the next
-// thread's discs, whose state then crosses between the cores every step: small blocks keep
-// that short (64 pairs rather than 256 took ~1.2 us off a two-thread step, and wall contacts,
-// a few per disc on the floor spread along the whole flow, go in blocks of 16 so each thread
-// computes its own; docs/performance.md, fifteenth session).
-inline constexpr std::int64_t kPairLedgerBlock = 64;
-inline constexpr std::int64_t kWallLedgerBlock = 16;
+// The force pass's ledger sums per fixed block of contacts (kPairLedgerBlock,
+// kWallLedgerBlock), added in block order whatever thread computed each block
+// (contact_forces.cpp): scratch of the World.
 struct LedgerBlocks {
   // A cache line each: two threads write the blocks on either side of their boundary.
   struct alignas(64) Block {
