@@ -143,22 +143,36 @@ TEST(Trajectory, AdvanceOfManyStepsStepsLikeOneStepAtATime) {
   one.set_threads(1);
   for (int k = 0; k < kSteps; ++k) one.step();
   const std::int64_t one_rebuilt = one.profile().rebuilds - released.profile().rebuilds;
-  for (const int threads : {2, 9}) {
-    World other = released;
-    other.set_threads(threads);
-    const std::int64_t rebuilds = other.profile().rebuilds;
-    other.advance(kSteps);
-    EXPECT_GE(other.profile().rebuilds - rebuilds, 3) << "the flow should cross several rebuilds";
-    // The groups' bound, judged inside the region from each block's terms, is the one a
-    // thread alone works out: the lists are rebuilt as often.
-    EXPECT_EQ(other.profile().rebuilds - rebuilds, one_rebuilt) << threads << " threads";
-    EXPECT_TRUE(same_disc_state(one, other)) << threads << " threads";
-    EXPECT_EQ(other.step_count(), one.step_count());
-    EXPECT_EQ(other.time(), one.time());
-    EXPECT_EQ(other.dissipation().normal, one.dissipation().normal) << threads << " threads";
-    EXPECT_EQ(other.dissipation().friction, one.dissipation().friction) << threads << " threads";
-    EXPECT_GT(other.dissipation().normal + other.dissipation().friction, 0.0);
-  }
+  // A step's forces started before the verdict on the step before, and dropped where that
+  // verdict ends the region (`always`: at every rebuild and every first spent bound), leave
+  // no trace: not in the history (the friction springs), the ledger or the rebuilds.
+  using Ahead = StepSettings::Ahead;
+  for (const Ahead ahead : {Ahead::when_safe, Ahead::always, Ahead::never})
+    for (const int threads : {2, 9}) {
+      World other = released;
+      other.set_threads(threads);
+      other.set_ahead(ahead);
+      const StepProfile before = other.profile();
+      other.advance(kSteps);
+      const StepProfile after = other.profile();
+      const std::string what = std::to_string(threads) + " threads, ahead " + std::to_string(static_cast<int>(ahead));
+      EXPECT_GE(after.rebuilds - before.rebuilds, 3) << "the flow should cross several rebuilds";
+      // The groups' bound, judged inside the region from each block's terms, is the one a
+      // thread alone works out: the lists are rebuilt as often.
+      EXPECT_EQ(after.rebuilds - before.rebuilds, one_rebuilt) << what;
+      EXPECT_TRUE(same_disc_state(one, other)) << what;
+      EXPECT_EQ(other.step_count(), one.step_count());
+      EXPECT_EQ(other.time(), one.time());
+      EXPECT_EQ(other.dissipation().normal, one.dissipation().normal) << what;
+      EXPECT_EQ(other.dissipation().friction, one.dissipation().friction) << what;
+      EXPECT_GT(other.dissipation().normal + other.dissipation().friction, 0.0);
+      const std::int64_t ahead_steps = after.steps_ahead - before.steps_ahead;
+      const std::int64_t dropped = after.steps_dropped - before.steps_dropped;
+      if (ahead == Ahead::never) EXPECT_EQ(ahead_steps, 0) << what;
+      else EXPECT_GT(ahead_steps, kSteps / 4) << what;
+      if (ahead == Ahead::always) EXPECT_GT(dropped, 0) << what;
+      if (ahead == Ahead::when_safe) EXPECT_LE(dropped, ahead_steps / 50) << what;
+    }
 }
 
 }  // namespace

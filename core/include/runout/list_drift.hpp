@@ -42,10 +42,11 @@ class ListDrift {
   // found (since the last `closing`, no rebuild), `split` by the threads' blocks of discs
   // (whole groups); each block's `measure` then boxes its groups' displacements and takes
   // the bound's terms within the block (its groups and the near pairs inside it), and
-  // `bound` adds the near pairs across blocks. The boxes are kept in two slots, so a thread
-  // may measure a step's discs in one while the others still take the step before's bound
-  // from the other (World::forces_and_motion: a region of several steps).
-  static constexpr int kSlots = 2;
+  // `bound` adds the near pairs across blocks. The boxes are kept in three slots, by step in
+  // turn, so a thread may measure a step's discs while the others still take an earlier
+  // step's bound (World::forces_and_motion: a thread may be a step ahead of another, and
+  // computes the next step's forces before the step's verdict).
+  static constexpr int kSlots = 3;
   struct Partial {  // a block's terms: the largest squared spread, the largest wall closing
     double pairs2 = 0, walls = -std::numeric_limits<double>::infinity();
     static Partial merge(const Partial& a, const Partial& b) {

@@ -52,12 +52,20 @@ struct StepSettings {
   // Local non-viscous damping (PFC's): each acceleration component loses this share of its
   // magnitude against the motion. Only while a pile settles (setup.cpp); 0 in every flow.
   double local_damping = 0;
+  // When a step of several threads starts its forces before the verdict on the step before
+  // (World::forces_and_motion): where the lists' bound leaves room for it, always (tests: every
+  // region a verdict ends then drops a step's forces), or never. No result depends on it.
+  enum class Ahead { when_safe, always, never };
+  Ahead ahead = Ahead::when_safe;
 };
 
 // Wall-clock seconds spent in each phase since construction.
 struct StepProfile {
   double contact_forces = 0, integrate = 0, rebuild = 0;  // contact forces: pairs and walls
   std::int64_t rebuilds = 0;
+  // Steps of several threads whose forces started before the verdict on the step before,
+  // and those of them dropped because that verdict ended the parallel region.
+  std::int64_t steps_ahead = 0, steps_dropped = 0;
 };
 
 // What one force pass returns besides the forces: the largest guarded overlap share and, with
@@ -137,6 +145,7 @@ class World {
   std::int64_t step_count() const { return steps_; }
 
   void set_threads(int threads) { settings_.threads = std::clamp(threads, 1, kMaxThreads); }
+  void set_ahead(StepSettings::Ahead ahead) { settings_.ahead = ahead; }
   void set_clock(double time, std::int64_t steps) { time_ = time; steps_ = steps; }
   // `radius_scale`: the share of their final radii every disc has now (radius growth), so the
   // guard judges overlaps against the final radii.
@@ -166,6 +175,7 @@ class World {
   std::int64_t forces_and_motion(bool forces, double kick, double drift, std::int64_t passes);
   // What a pass means for the next one; every thread of a region works out the same.
   struct Verdict {
+    double whole = 0;       // the whole flow's bound after the pass
     double list_drift = 0;  // list_drift_ after the pass (see below)
     bool spent = false;     // the whole flow's bound is spent: the groups' bound counts
     bool closing = false;   // ... and must first be measured over all discs (ListDrift::closing)
@@ -208,7 +218,11 @@ class World {
   double guard_radius_scale_ = 1.0;
   double peak_impact_overlap_ = 0;  // largest guarded share seen (see overlap_guard)
   bool finite_ = true;
-  LedgerBlocks ledger_blocks_[2];  // by pass parity: one pass's sums are read as the next is written
+  // By pass, in turn (ListDrift::kSlots): a pass's sums are read while later ones are written.
+  LedgerBlocks ledger_blocks_[ListDrift::kSlots];
+  // The history's other buffer (phases::HistoryTurn): a force pass writes here, and the two
+  // are swapped once it counts.
+  HotArray<double> pair_history_next_, wall_history_next_;
   // Each thread's block of discs for a whole step (load_balance.hpp) and what hands one
   // block's results to the next (World::forces_and_motion).
   LoadBalance blocks_{LoadBalance::Work::step};
@@ -218,14 +232,16 @@ class World {
   // so does a world assigned over: its pass count is the assigned one's, and a flag left at a
   // pass it reaches later would let a thread skip its wait.
   struct ReadyFlags {
-    // `pass`: the boundary pairs are done; `done`: the whole pass is (its outcome is out).
-    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}, done{-1}; };
+    // `pass`: the boundary pairs are done; `moved`: the discs earlier blocks reach have moved
+    // (their pushes read, their new state out); `done`: the whole pass is (its outcome is out).
+    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}, moved{-1}, done{-1}; };
     std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
     ReadyFlags() = default;
     ReadyFlags(const ReadyFlags&) : ReadyFlags() {}
     ReadyFlags& operator=(const ReadyFlags&) {
       for (int t = 0; t < kMaxThreads; ++t) {
         flag[t].pass.store(-1, std::memory_order_relaxed);
+        flag[t].moved.store(-1, std::memory_order_relaxed);
         flag[t].done.store(-1, std::memory_order_relaxed);
       }
       return *this;
