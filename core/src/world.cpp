@@ -173,6 +173,7 @@ void World::rebuild_lists() {
     }
   }
   drift_.rebuilt(search_.largest_radius(), settings_.skin);
+  recent_count_ = 0;
   list_drift_ = 0;
   watch_groups_ = false;
   max_growth_ = 0;
@@ -252,6 +253,9 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       ledger_.rolling += total.loss_rolling;
     }
     if (forces) peak_impact_overlap_ = std::max(peak_impact_overlap_, sums.worst * guard_radius_scale_);
+    recent_[0] = recent_[1];
+    recent_[1] = v;
+    ++recent_count_;
     last = v;
     last_sums = sums;
     last_motion = m;
@@ -361,8 +365,10 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         // The forces of pass k + 1 overlap the wait for pass k's verdict where it is safe to
         // drop them (the history's two buffers; `ahead`); the region's last pass is judged at
         // once.
-        Verdict v, before;
-        int verdicts = 0;
+        // The last two verdicts, since the lists were built: a region goes on from where the
+        // one before it ended (a turn of the blocks, a reordering, the caller's steps).
+        Verdict v = recent_[1], before = recent_[0];
+        std::int64_t verdicts = recent_count_;
         bool pending = false;
         for (std::int64_t k = 0; k < passes; ++k) {
           const std::int64_t pass = first_pass + k;

@@ -185,6 +185,9 @@ class World {
   Verdict judge(const PassSums& sums, const phases::Motion& motion, bool watched,
                 const ListDrift::Partial& blocks, int slot) const;
   void check_finite() const;
+  // The last two verdicts (recent_[1] the last), and how many were given since the rebuild.
+  Verdict recent_[2];
+  std::int64_t recent_count_ = 0;
  public:
   // Throws NumericalError if a disc has left the walls' bounding box by more than `margin`
   // (it passed through a wall and would fall for ever). No walls: no check.
