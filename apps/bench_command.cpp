@@ -97,16 +97,21 @@ int bench_command(const BenchOptions& o) {
   // the same bits at any count).
   struct Tally {
     int threads = 1;
+    StepSettings::Ahead ahead = StepSettings::Ahead::when_safe;
     long long steps = 0;
     double seconds = 0;
     StepProfile profile;
   };
   Tally mine, other;
   mine.threads = o.threads;
+  mine.ahead = o.ahead == "always"  ? StepSettings::Ahead::always
+               : o.ahead == "never" ? StepSettings::Ahead::never
+                                    : StepSettings::Ahead::when_safe;
   other.threads = o.against_threads;
   using Clock = std::chrono::steady_clock;
   auto run_turn = [&](Tally& tally, long long steps) {
     world.set_threads(tally.threads);
+    world.set_ahead(tally.ahead);
     const StepProfile before = world.profile();
     const auto t0 = Clock::now();
     world.advance(steps);
@@ -133,6 +138,7 @@ int bench_command(const BenchOptions& o) {
   std::printf("scene: %s\n", scene.name.c_str());
   std::printf("discs: %.0f\n", n);
   std::printf("threads: %d\n", o.threads);
+  std::printf("ahead: %s\n", o.ahead.c_str());
   std::printf("t_star_start: %.3f\n", t_star_start);
   std::printf("steps: %lld\n", o.steps);
   std::printf("seconds: %.4f\n", secs);

@@ -40,6 +40,9 @@ struct BenchOptions {
   // With --threads T: also step T copies of the pile, each at one thread by its own thread,
   // in turns alone and side by side (the host's ceiling for threads that share nothing).
   bool ceiling = false;
+  // When --threads' steps start their forces before the verdict on the step before
+  // (StepSettings::Ahead); --against-threads always runs with the default, when_safe.
+  std::string ahead = "when_safe";
   long long turn_steps = 1000;
   std::string cache_dir;
   std::vector<std::string> overrides;

@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
       "--ceiling", bench.ceiling,
       "also time --threads copies of the pile, each stepped by its own thread at one thread, side by side against one "
       "after another: the speed-up this host gives threads that share nothing (prints ceiling_*)");
+  bench_cmd->add_option("--ahead", bench.ahead,
+                        "when_safe | always | never: when a step of several threads starts its forces before the verdict on "
+                        "the step before (--against-threads keeps when_safe; no result depends on it)")
+      ->check(CLI::IsMember({"when_safe", "always", "never"}));
   auto* turns = bench_cmd->add_option("--turn-steps", bench.turn_steps,
                                       "steps of one turn with --against-threads or --ceiling (default 1000)")
                     ->check(CLI::Range(1LL, 100000000LL));
