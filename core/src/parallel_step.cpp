@@ -51,9 +51,12 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   // With several threads, pass k of the call reads the history from buffer k % 2 and writes
   // it to the other; one thread computes nothing ahead and keeps one buffer (a second one
   // cost it ~1.5 % in cache misses).
+  // A pass writes every contact's history, so the other buffer is never cleared.
   const bool turns = T > 1 && forces;
-  pair_history_next_.resize(turns ? pairs_.history.size() : 0);
-  wall_history_next_.resize(turns ? wall_contacts_.history.size() : 0);
+  if (turns) {
+    pair_history_next_.resize(pairs_.history.size());
+    wall_history_next_.resize(wall_contacts_.history.size());
+  }
   double* const pair_history[2] = {pairs_.history.data(), turns ? pair_history_next_.data() : pairs_.history.data()};
   double* const wall_history[2] = {wall_contacts_.history.data(), turns ? wall_history_next_.data() : wall_contacts_.history.data()};
   const phases::HistoryTurn turn[2] = {{pair_history[0], pair_history[1], wall_history[0], wall_history[1]},
@@ -209,7 +212,9 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         // drop them (the history's two buffers; `ahead`); the region's last pass is judged at
         // once.
         // The last two verdicts, since the lists were built: a region goes on from where the
-        // one before it ended (a turn of the blocks, a reordering, the caller's steps).
+        // one before it ended (a turn of the blocks, a reordering, the caller's steps). Read
+        // before this thread's first pass, which thread 0 settles (writing recent_) only once
+        // every thread has done it.
         Verdict v = recent_[1], before = recent_[0];
         std::int64_t verdicts = recent_count_;
         bool pending = false;
