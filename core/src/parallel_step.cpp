@@ -32,8 +32,7 @@ World::Verdict World::judge(const PassSums& sums, const phases::Motion& motion, 
   // walls) is cheap; once it is spent, the groups' bound (ListDrift) often is not. It assumes
   // fixed radii, so not while discs grow.
   Verdict v;
-  v.whole = std::max(motion.spread(), motion.largest());
-  v.list_drift = v.whole;
+  v.list_drift = std::max(motion.spread(), motion.largest());
   v.spent = v.list_drift + 2 * max_growth_ >= settings_.skin && max_growth_ == 0;
   if (v.spent && watched) v.list_drift = drift_.bound(motion.spread(), blocks, slot);
   v.closing = v.spent && !watched;
@@ -48,6 +47,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   if (ledger)
     for (auto& blocks : ledger_blocks_) blocks.size_for(pairs_, wall_contacts_);
   const int T = settings_.threads;
+  constexpr int S = ListDrift::kSlots;  // passes in turn (outcomes, ledger blocks, drift boxes)
   // With several threads, pass k of the call reads the history from buffer k % 2 and writes
   // it to the other; one thread computes nothing ahead and keeps one buffer (a second one
   // cost it ~1.5 % in cache misses).
@@ -65,7 +65,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
                       std::int64_t wall_hi, std::int64_t pass, std::int64_t k) {
     return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
                                   {pair_lo, pair_hi, wall_lo, wall_hi},
-                                  ledger_blocks_[pass % ListDrift::kSlots], turn[k & 1]);
+                                  ledger_blocks_[pass % S], turn[k & 1]);
   };
   auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
     return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
@@ -79,14 +79,13 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     phases::Motion motion;
     ListDrift::Partial drift;
   };
-  constexpr int kOnStack = 8, S = ListDrift::kSlots;
+  constexpr int kOnStack = 8;
   Outcome on_stack[S * kOnStack];
   std::vector<Outcome> on_heap(T > kOnStack ? S * static_cast<std::size_t>(T) : 0);
   Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
-  // Thread 0 keeps the last pass's outcome and verdict, and the region's totals.
+  // Thread 0 keeps the last pass's outcome and the region's totals; its verdict is recent_[1].
   PassSums last_sums;
   phases::Motion last_motion;
-  Verdict last;
   std::int64_t done = 0;
   double forces_seconds = 0;  // thread 0's
   const auto t0 = Clock::now();
@@ -102,7 +101,6 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     recent_[0] = recent_[1];
     recent_[1] = v;
     ++recent_count_;
-    last = v;
     last_sums = sums;
     last_motion = m;
     ++done;
@@ -193,15 +191,15 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       return v;
     };
     // Whether the next pass's forces may start before this pass's verdict: only where the
-    // bound that ends the region, grown twice as fast as over the last pass, still holds.
-    // A pass computed ahead and dropped costs its forces (~20 us on the bench pile, against
-    // the ~1 us the verdict's wait takes); no result depends on it.
+    // bound that ends the region (list_drift: the whole flow's, or once spent the groups'),
+    // grown three times as much as over the last pass, still holds. A pass computed ahead
+    // and dropped costs its forces (about half a two-thread step on the bench pile, against
+    // the ~1 us the verdict's wait took); no result depends on it.
     const double skin = settings_.skin - 2 * max_growth_;
     auto ahead = [&](const Verdict& v, const Verdict& before) {
       if (settings_.ahead != StepSettings::Ahead::when_safe) return settings_.ahead == StepSettings::Ahead::always;
-      const double bound = v.spent ? v.list_drift : v.whole;
-      const double grown = std::max(0.0, bound - (before.spent ? before.list_drift : before.whole));
-      return v.spent == before.spent && bound + 3 * grown < skin;
+      const double grown = std::max(0.0, v.list_drift - before.list_drift);
+      return v.spent == before.spent && v.list_drift + 3 * grown < skin;
     };
 #pragma omp parallel num_threads(T)
     {
@@ -277,6 +275,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     std::swap(pairs_.history, pair_history_next_);
     std::swap(wall_contacts_.history, wall_history_next_);
   }
+  const Verdict& last = recent_[1];
   list_drift_ = last.closing ? drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
                                               search_.wall_margin(), last_motion.spread())
                              : last.list_drift;

@@ -175,7 +175,6 @@ class World {
   std::int64_t forces_and_motion(bool forces, double kick, double drift, std::int64_t passes);
   // What a pass means for the next one; every thread of a region works out the same.
   struct Verdict {
-    double whole = 0;       // the whole flow's bound after the pass
     double list_drift = 0;  // list_drift_ after the pass (see below)
     bool spent = false;     // the whole flow's bound is spent: the groups' bound counts
     bool closing = false;   // ... and must first be measured over all discs (ListDrift::closing)
