@@ -104,9 +104,7 @@ int bench_command(const BenchOptions& o) {
   };
   Tally mine, other;
   mine.threads = o.threads;
-  mine.ahead = o.ahead == "always"  ? StepSettings::Ahead::always
-               : o.ahead == "never" ? StepSettings::Ahead::never
-                                    : StepSettings::Ahead::when_safe;
+  mine.ahead = kAheadNames.at(o.ahead);
   other.threads = o.against_threads;
   using Clock = std::chrono::steady_clock;
   auto run_turn = [&](Tally& tally, long long steps) {

@@ -2,10 +2,12 @@
 // core's run loop and the files a run writes.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "pictures.hpp"
+#include "runout/world.hpp"
 
 namespace runout::app {
 
@@ -29,6 +31,12 @@ struct RunOptions {
   PictureOptions pictures;
 };
 
+// bench --ahead's names of StepSettings::Ahead: the option's allowed values and their meaning.
+inline const std::map<std::string, StepSettings::Ahead> kAheadNames{
+    {"when_safe", StepSettings::Ahead::when_safe},
+    {"always", StepSettings::Ahead::always},
+    {"never", StepSettings::Ahead::never}};
+
 struct BenchOptions {
   std::string scene_path;  // empty: the embedded bench scene (D/d = 4, %A_p = 40)
   long long steps = 20000;
@@ -41,7 +49,8 @@ struct BenchOptions {
   // in turns alone and side by side (the host's ceiling for threads that share nothing).
   bool ceiling = false;
   // When --threads' steps start their forces before the verdict on the step before
-  // (StepSettings::Ahead); --against-threads always runs with the default, when_safe.
+  // (StepSettings::Ahead, by its name in kAheadNames); --against-threads always runs with the
+  // default, when_safe.
   std::string ahead = "when_safe";
   long long turn_steps = 1000;
   std::string cache_dir;

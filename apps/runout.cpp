@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--ahead", bench.ahead,
                         "when_safe | always | never: when a step of several threads starts its forces before the verdict on "
                         "the step before (--against-threads keeps when_safe; no result depends on it)")
-      ->check(CLI::IsMember({"when_safe", "always", "never"}));
+      ->check(CLI::IsMember(runout::app::kAheadNames));
   auto* turns = bench_cmd->add_option("--turn-steps", bench.turn_steps,
                                       "steps of one turn with --against-threads or --ceiling (default 1000)")
                     ->check(CLI::Range(1LL, 100000000LL));
