@@ -37,7 +37,7 @@ Lists heap(int n) {
   Lists l;
   l.n = n;
   NeighborSearch search;
-  search.rebuild(sorted, make_segments({{"floor", {{-1.0, 0.0}, {41.0, 0.0}}, true}}), 0.05, 1, 1,
+  search.rebuild(sorted, make_segments({{"floor", {{-1.0, 0.0}, {41.0, 0.0}}, true}}), 0.05, 1, {}, 1,
                  l.pairs, l.walls, l.runs);
   return l;
 }

@@ -38,12 +38,17 @@ TEST(NeighborSearch, FindsExactlyTheBruteForcePairs) {
       const Particles p = random_discs(1500, 30.0, ratio > 0 ? 0.5 / ratio : -1.0, 0.5, seed);
       const double skin = 0.05;
       const std::vector<Segment> walls = make_segments({{"w", {{0.0, 0.0}, {30.0, 5.0}, {30.0, 30.0}}, true}});
-      for (int threads : {1, 2}) {
+      // Equal shares for 1 and 2 threads, then the step's blocks of 2 (a window's end) and of
+      // 3 (ends that start no window: every partition must give the same lists).
+      const std::int64_t n = static_cast<std::int64_t>(p.size());
+      const std::vector<std::vector<std::int64_t>> partitions = {{}, {}, {0, 352, n}, {0, 100, 1000, n}};
+      for (std::size_t c = 0; c < partitions.size(); ++c) {
+        const int threads = c == 0 ? 1 : partitions[c].empty() ? 2 : static_cast<int>(partitions[c].size()) - 1;
         NeighborSearch search;
         PairContacts pairs;
         WallContacts wall_pairs;
         DiscRuns runs;
-        search.rebuild(p, walls, skin, threads, 1, pairs, wall_pairs, runs);
+        search.rebuild(p, walls, skin, threads, partitions[c], 1, pairs, wall_pairs, runs);
         std::set<std::pair<int, int>> found, expected;
         for (std::size_t q = 0; q < pairs.size(); ++q) found.insert({pairs.i[q], pairs.j[q]});
         for (std::size_t a = 0; a < p.size(); ++a)

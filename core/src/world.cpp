@@ -3,6 +3,8 @@
 // contact_forces.cpp, integrate.cpp; checks: safety.cpp.
 #include "runout/world.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <tuple>
 
@@ -133,23 +135,26 @@ void World::reorder_discs() {
 
 void World::rebuild_lists() {
   const auto t0 = Clock::now();
-  search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, history_width_,
-                  pairs_, wall_contacts_, runs_);
-  // In parallel, each thread writing about the share its block's step will read: one thread
-  // wrote them all in ~13 us, and the others then took those lines back in their first step.
+  search_.rebuild(particles_, segments_, settings_.skin, settings_.threads, blocks_.bounds(),
+                  history_width_, pairs_, wall_contacts_, runs_);
+  // In parallel, each thread writing the share its block's step will read (its block's discs
+  // and their rows, as the search did): one thread wrote them all in ~13 us, and the others
+  // then took those lines back in their first step.
   const auto& p = particles_;
-  const auto n = static_cast<std::int64_t>(p.size()), np = static_cast<std::int64_t>(pairs_.size());
+  const auto n = static_cast<std::int64_t>(p.size());
   pairs_.kind.resize(pairs_.size());
   x_at_rebuild_.resize(p.size());
   y_at_rebuild_.resize(p.size());
   radius_at_rebuild_.resize(p.size());
+  const std::vector<std::int64_t>& b = blocks_.bounds();
 #pragma omp parallel num_threads(settings_.threads)
   {
-#pragma omp for schedule(static) nowait
-    for (std::int64_t q = 0; q < np; ++q)
+    const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    const bool fit = static_cast<int>(b.size()) == T + 1 && b.back() == n;
+    const std::int64_t lo = fit ? b[t] : n * t / T, hi = fit ? b[t + 1] : n * (t + 1) / T;
+    for (std::int64_t q = pairs_.row_start[lo]; q < pairs_.row_start[hi]; ++q)
       pairs_.kind[q] = p.species[pairs_.i[q]] * table_.species_count + p.species[pairs_.j[q]];
-#pragma omp for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k) {
+    for (std::int64_t k = lo; k < hi; ++k) {
       x_at_rebuild_[k] = p.x[k];
       y_at_rebuild_[k] = p.y[k];
       radius_at_rebuild_[k] = p.radius[k];

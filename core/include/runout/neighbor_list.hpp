@@ -83,10 +83,12 @@ class NeighborSearch {
  public:
   // Rebuilds both lists for the current positions, keeping the history of pairs present before
   // and after. `reach` is the skin: pairs with gap < skin are listed. Each contact keeps
-  // `history_width` doubles of history (the contact model's).
+  // `history_width` doubles of history (the contact model's). With `threads` threads; where
+  // `blocks` are a block of discs for each of them (LoadBalance::bounds), each thread builds
+  // the rows of its block, else of an equal share.
   void rebuild(const Particles& p, const std::vector<Segment>& segments, double skin,
-               int threads, int history_width, PairContacts& pairs, WallContacts& walls,
-               DiscRuns& runs);
+               int threads, const std::vector<std::int64_t>& blocks, int history_width,
+               PairContacts& pairs, WallContacts& walls, DiscRuns& runs);
   // Per disc, from the last rebuild: how far it can move before it could touch an active wall
   // segment it is not listed with (at least the skin; infinite without walls). ListDrift.
   const std::vector<double>& wall_margin() const { return wall_margin_; }
@@ -94,13 +96,22 @@ class NeighborSearch {
   double largest_radius() const { return largest_radius_; }
 
  private:
+  void runs_of(const PairContacts& pairs, DiscRuns& runs, int t, int T, std::int32_t lo,
+               std::int32_t hi);
+
   std::vector<double> wall_margin_;
   double largest_radius_ = 0;
   CellGrid grid_;
-  std::vector<std::vector<std::int32_t>> thread_j_;     // per thread, then merged
-  std::vector<std::size_t> thread_found_;               // how much of thread_j_[t] is this search's
+  // What each thread of the rebuild's team sums of its block, for the others (own lines).
+  struct alignas(64) TeamSlot {
+    double fine_radius = 0;
+    std::int32_t walls = 0, pairs = 0;
+  };
+  std::vector<TeamSlot> team_;
+  std::vector<std::vector<std::int32_t>> thread_j_;     // per thread, pairs of its rows
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> thread_foreign_;  // of others' rows
   std::vector<std::vector<std::int32_t>> chunk_walls_;  // per chunk of discs, then merged
-  std::vector<std::vector<std::int32_t>> thread_count_;  // pairs per row, then cursors, per thread
+  std::vector<std::vector<std::int32_t>> thread_count_;  // per thread: its rows' pairs, then cursors
   std::vector<std::int32_t> lane_of_;  // disc -> its lane (DiscRuns::lane_disc)
   std::vector<std::int32_t> run_length_;  // disc -> pairs in its run
   PairContacts old_pairs_;
