@@ -16,13 +16,6 @@ namespace {
 // Discs a thread takes at a time where the rebuild hands out work as threads come free.
 constexpr std::int32_t kChunk = 128;
 
-// Contiguous block of [0, n) for thread t of T: concatenating blocks in thread order gives the
-// same list for any thread count.
-inline std::pair<std::int32_t, std::int32_t> block(std::int32_t n, int t, int T) {
-  return {static_cast<std::int32_t>(std::int64_t(n) * t / T),
-          static_cast<std::int32_t>(std::int64_t(n) * (t + 1) / T)};
-}
-
 // Copies the history of pairs listed before into the new list, `width` columns per contact.
 // Both lists are sorted by (first, second) within a row; rows are per first index. A list of
 // another width (a checkpoint of other laws) carries nothing. For the rows [lo, hi).
@@ -135,11 +128,9 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), T = omp_get_num_threads();
-    // This thread's discs and rows: its block of the step where the blocks fit the team, so
-    // each thread writes the rows its step reads.
-    const bool fit = static_cast<int>(blocks.size()) == T + 1 && blocks.back() == n;
-    const std::int32_t lo = fit ? static_cast<std::int32_t>(blocks[t]) : block(n, t, T).first;
-    const std::int32_t hi = fit ? static_cast<std::int32_t>(blocks[t + 1]) : block(n, t, T).second;
+    // This thread's discs and rows.
+    const auto [block_lo, block_hi] = team_block(blocks, n, t, T);
+    const auto lo = static_cast<std::int32_t>(block_lo), hi = static_cast<std::int32_t>(block_hi);
     TeamSlot& mine = team_[t];
     // One thread bins the discs into cells while the others take chunks of the walls, then
     // it takes chunks too. A binning by every thread (counts per cell and thread) took 40 us

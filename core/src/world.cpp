@@ -150,8 +150,7 @@ void World::rebuild_lists() {
 #pragma omp parallel num_threads(settings_.threads)
   {
     const int t = omp_get_thread_num(), T = omp_get_num_threads();
-    const bool fit = static_cast<int>(b.size()) == T + 1 && b.back() == n;
-    const std::int64_t lo = fit ? b[t] : n * t / T, hi = fit ? b[t + 1] : n * (t + 1) / T;
+    const auto [lo, hi] = team_block(b, n, t, T);
     for (std::int64_t q = pairs_.row_start[lo]; q < pairs_.row_start[hi]; ++q)
       pairs_.kind[q] = p.species[pairs_.i[q]] * table_.species_count + p.species[pairs_.j[q]];
     for (std::int64_t k = lo; k < hi; ++k) {

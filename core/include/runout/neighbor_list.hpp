@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "runout/cell_grid.hpp"
@@ -78,6 +79,16 @@ struct DiscRuns {
 
   std::size_t slices() const { return slice_start.empty() ? 0 : slice_start.size() - 1; }
 };
+
+// Thread t of T's discs [first, second) where a rebuild or its follow-up writes per thread:
+// block t of the step (`blocks`, LoadBalance::bounds) where the blocks fit the team, so each
+// thread writes what its step reads; else an equal share. Either way the blocks run in thread
+// order over [0, n), so the lists are the same for any thread count.
+inline std::pair<std::int64_t, std::int64_t> team_block(const std::vector<std::int64_t>& blocks,
+                                                        std::int64_t n, int t, int T) {
+  if (static_cast<int>(blocks.size()) == T + 1 && blocks.back() == n) return {blocks[t], blocks[t + 1]};
+  return {n * t / T, n * (t + 1) / T};
+}
 
 class NeighborSearch {
  public:
