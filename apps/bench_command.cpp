@@ -121,7 +121,7 @@ int bench_command(const BenchOptions& o) {
     tally.profile.rebuild += after.rebuild - before.rebuild;
     tally.profile.rebuilds += after.rebuilds - before.rebuilds;
     tally.profile.steps_ahead += after.steps_ahead - before.steps_ahead;
-    tally.profile.steps_held += after.steps_held - before.steps_held;
+    tally.profile.steps_dropped += after.steps_dropped - before.steps_dropped;
   };
   Ceiling ceiling;
   const bool turns = o.against_threads > 0 || o.ceiling;
@@ -146,7 +146,7 @@ int bench_command(const BenchOptions& o) {
   std::printf("share_integrate: %.3f\n", mine.profile.integrate / secs);
   std::printf("share_rebuild: %.3f\n", mine.profile.rebuild / secs);
   std::printf("steps_ahead: %lld\n", static_cast<long long>(mine.profile.steps_ahead));
-  std::printf("steps_held: %lld\n", static_cast<long long>(mine.profile.steps_held));
+  std::printf("steps_dropped: %lld\n", static_cast<long long>(mine.profile.steps_dropped));
   std::printf("particle_steps_per_second: %.0f\n", n * o.steps / secs);
   if (o.against_threads > 0) {
     std::printf("turn_steps: %lld\n", o.turn_steps);

@@ -100,9 +100,10 @@ struct Kernel {
   Source source;
   typename Model::Row law;
   double impact_rate;
-  // Column m of contact q at [m * count + q] (SoA), read and written in place (contact q's
-  // only, so `omp simd` holds).
-  double* history;
+  // Column m of contact q at [m * count + q] (SoA): read from one buffer, written to the
+  // other, or to the same one (phases::HistoryTurn; contact q's only, so `omp simd` holds).
+  const double* history_in;
+  double* history_out;
   std::int64_t count;
   // The push on the disc (pairs: on i) at [q]; pairs also write the push on j at [on_j + q].
   double* __restrict fx; double* __restrict fy; double* __restrict torque;
@@ -112,7 +113,7 @@ struct Kernel {
     constexpr int W = Model::kHistory;
     const Contact c = source(q);
     double h[W > 0 ? W : 1];
-    for (int m = 0; m < W; ++m) h[m] = history[m * count + q];
+    for (int m = 0; m < W; ++m) h[m] = history_in[m * count + q];
     ContactSums sums;
     // A contact that ends banks the loss its history committed (Walton–Braun hysteresis).
     if constexpr (kLedger) sums.loss_normal = Model::committed_loss(law, c.kind, h);
@@ -123,7 +124,7 @@ struct Kernel {
       sums.loss_friction = c.touching ? loss.friction : 0.0;
       sums.loss_rolling = c.touching ? loss.rolling : 0.0;
     }
-    for (int m = 0; m < W; ++m) history[m * count + q] = c.touching ? h[m] : 0.0;
+    for (int m = 0; m < W; ++m) history_out[m * count + q] = c.touching ? h[m] : 0.0;
     const double fn = c.touching ? a.normal : 0.0, ft = c.touching ? a.tangential : 0.0;
     // Force on i: the normal pushes i away from j, the tangential acts along s = (-ny, nx).
     const double push_x = -fn * c.nx - ft * c.ny, push_y = -fn * c.ny + ft * c.nx;
@@ -195,22 +196,29 @@ WallSource wall_source(const StepContext& step, const Particles& p, const WallCo
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
 }
 
-// Calls `use` with the kernels of a force pass over the world's pairs and wall contacts (their
-// law rows point into the tables made here).
-template <class Model, bool kLedger, class Use>
-PassSums with_kernels(const StepContext& step, const Particles& p, PairContacts& pairs,
-                      WallContacts& walls, Use&& use) {
-  const double rate = step.settings.impact_rate;
+template <class Model, bool kLedger>
+PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
+                     WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
+                     const HistoryTurn& history) {
+  const StepSettings& st = step.settings;
   const auto pair_law = Model::tables(step.table.pair);
-  const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law), rate,
-                                              pairs.history.data(), static_cast<std::int64_t>(pairs.size()),
-                                              pairs.fx.data(), pairs.fy.data(), pairs.torque.data(),
+  const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law),
+                                              st.impact_rate, history.pairs_in, history.pairs_out,
+                                              static_cast<std::int64_t>(pairs.size()),
+                                              pairs.fx.data(), pairs.fy.data(),
+                                              pairs.torque.data(),
                                               static_cast<std::int64_t>(pairs.j_offset())};
   const auto wall_law = Model::tables(step.table.wall);
-  const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law), rate,
-                                              walls.history.data(), static_cast<std::int64_t>(walls.size()),
-                                              walls.fx.data(), walls.fy.data(), walls.torque.data(), 0};
-  return use(pk, wk);
+  const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
+                                              st.impact_rate, history.walls_in, history.walls_out,
+                                              static_cast<std::int64_t>(walls.size()),
+                                              walls.fx.data(), walls.fy.data(),
+                                              walls.torque.data(), 0};
+  const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, kLedger, ledger.pairs.data(),
+                                kPairLedgerBlock);
+  const PassSums b = run_blocks(wk, range.wall_lo, range.wall_hi, kLedger, ledger.walls.data(),
+                                kWallLedgerBlock);
+  return a + b;
 }
 
 template <class Model, class Source, class Out>
@@ -249,32 +257,14 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
 }
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger) {
+                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
+                        const HistoryTurn& history) {
   PassSums sums;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
-    auto run = [&](const auto& pk, const auto& wk) {
-      const bool on = step.settings.track_energy;
-      const PassSums a = run_blocks(pk, range.pair_lo, range.pair_hi, on, ledger.pairs.data(), kPairLedgerBlock);
-      return a + run_blocks(wk, range.wall_lo, range.wall_hi, on, ledger.walls.data(), kWallLedgerBlock);
-    };
-    sums = step.settings.track_energy ? with_kernels<Model, true>(step, p, pairs, walls, run)
-                                      : with_kernels<Model, false>(step, p, pairs, walls, run);
-  });
-  return sums;
-}
-
-PassSums contact_forces_of(const StepContext& step, const Particles& p, PairContacts& pairs,
-                           WallContacts& walls, const std::vector<std::int32_t>& pair_list,
-                           const std::vector<std::int32_t>& wall_list) {
-  PassSums sums;
-  dispatch(step.settings.contact, [&](auto model) {
-    sums = with_kernels<decltype(model), false>(step, p, pairs, walls, [&](const auto& pk, const auto& wk) {
-      PassSums listed;
-      for (const std::int32_t q : pair_list) listed.worst = std::max(listed.worst, pk.one(q).worst);
-      for (const std::int32_t q : wall_list) listed.worst = std::max(listed.worst, wk.one(q).worst);
-      return listed;
-    });
+    sums = step.settings.track_energy
+               ? forces_with<Model, true>(step, p, pairs, walls, range, ledger, history)
+               : forces_with<Model, false>(step, p, pairs, walls, range, ledger, history);
   });
   return sums;
 }

@@ -48,18 +48,24 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     for (auto& blocks : ledger_blocks_) blocks.size_for(pairs_, wall_contacts_);
   const int T = settings_.threads;
   constexpr int S = ListDrift::kSlots;  // passes in turn (outcomes, ledger blocks, drift boxes)
-  // The history is read and written in place. A pass whose forces were computed before the
-  // verdict on the pass before, where that verdict ends the region, is not dropped but held
-  // (held_): its forces are exact whatever the verdict, so the next region starts from them
-  // (World::rebuild_lists brings them into new lists). A second buffer that would let it be
-  // dropped cost two threads 1.2-2.4 % of the region (docs/performance.md, issue 11,
-  // twenty-sixth session).
-  const bool first_held = held_;
-  held_ = false;
+  // With several threads, pass k of the call reads the history from buffer k % 2 and writes
+  // it to the other; one thread computes nothing ahead and keeps one buffer (a second one
+  // cost it ~1.5 % in cache misses).
+  // A pass writes every contact's history, so the other buffer is never cleared.
+  const bool turns = T > 1 && forces;
+  if (turns) {
+    pair_history_next_.resize(pairs_.history.size());
+    wall_history_next_.resize(wall_contacts_.history.size());
+  }
+  double* const pair_history[2] = {pairs_.history.data(), turns ? pair_history_next_.data() : pairs_.history.data()};
+  double* const wall_history[2] = {wall_contacts_.history.data(), turns ? wall_history_next_.data() : wall_contacts_.history.data()};
+  const phases::HistoryTurn turn[2] = {{pair_history[0], pair_history[1], wall_history[0], wall_history[1]},
+                                       {pair_history[1], pair_history[0], wall_history[1], wall_history[0]}};
   auto contacts = [&](std::int64_t pair_lo, std::int64_t pair_hi, std::int64_t wall_lo,
-                      std::int64_t wall_hi, std::int64_t pass) {
+                      std::int64_t wall_hi, std::int64_t pass, std::int64_t k) {
     return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
-                                  {pair_lo, pair_hi, wall_lo, wall_hi}, ledger_blocks_[pass % S]);
+                                  {pair_lo, pair_hi, wall_lo, wall_hi},
+                                  ledger_blocks_[pass % S], turn[k & 1]);
   };
   auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
     return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
@@ -99,13 +105,12 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     last_motion = m;
     ++done;
   };
-  std::int64_t taken = 0;  // flag values used: the passes done, and one computed ahead and held
+  std::int64_t taken = 0;  // flag values used: the passes done, and one computed ahead and dropped
   if (T == 1) {
     handoff_.release(pairs_, runs_, lists_version_);
     const std::int64_t pass = passes_ + 1;
     PassSums sums;
-    if (forces && first_held) sums.worst = held_worst_;
-    else if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass);
+    if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass, 0);
     forces_seconds = seconds_since(t0);
     const phases::Motion motion = motion_of(0, n);
     settle(pass, judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
@@ -132,7 +137,6 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // few microseconds): it then evens out when the threads finish, not only how long they
     // compute. Later steps count from each thread's own start.
     const auto region_start = Clock::now();
-    std::int64_t held_pass = -1;  // written by thread 0 alone
     // Thread t's contacts of a pass: first the rows that reach later blocks, then its flag,
     // then the rest. Those rows read the discs of later blocks as moved in the pass before.
     auto wait_reached = [&](int t, std::int64_t pass) {
@@ -143,13 +147,12 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       Outcome& mine = out[(pass % S) * T + t];
       const ContactRange& r = handoff_.range[t];
       const std::int64_t split = handoff_.boundary_pair[t];
-      const bool held = first_held && k == 0;  // computed by the region before
       if (forces) {
-        mine.sums = held ? PassSums{t == 0 ? held_worst_ : 0.0} : contacts(split, r.pair_hi, r.wall_lo, r.wall_hi, pass);
+        mine.sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi, pass, k);
         handoff_.publish(t, pairs_);
       }
       ready_.flag[t].pass.store(pass, std::memory_order_release);
-      if (forces && !held) mine.sums.worst = std::max(mine.sums.worst, contacts(r.pair_lo, split, 0, 0, pass).worst);
+      if (forces) mine.sums.worst = std::max(mine.sums.worst, contacts(r.pair_lo, split, 0, 0, pass, k).worst);
     };
     // Thread t's sums, kick and drift: first (once the earlier threads' boundary pairs are
     // done) the discs their contacts reach, then the rest. The reached discs' lines, which the
@@ -189,13 +192,11 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     };
     // Whether the next pass's forces may start before this pass's verdict: only where the
     // bound that ends the region (list_drift: the whole flow's, or once spent the groups'),
-    // grown three times as much as over the last pass, still holds. A pass held across a
-    // rebuild costs the pushes carried into the new lists; no result depends on it. With the
-    // ledger no pass goes ahead: a held pass's losses would be booked in the blocks of the
-    // lists it was computed with, not of those rebuilt after it.
+    // grown three times as much as over the last pass, still holds. A pass computed ahead
+    // and dropped costs its forces (about half a two-thread step on the bench pile, against
+    // the ~1 us the verdict's wait took); no result depends on it.
     const double skin = settings_.skin - 2 * max_growth_;
     auto ahead = [&](const Verdict& v, const Verdict& before) {
-      if (ledger) return false;
       if (settings_.ahead != StepSettings::Ahead::when_safe) return settings_.ahead == StepSettings::Ahead::always;
       const double grown = std::max(0.0, v.list_drift - before.list_drift);
       return v.spent == before.spent && v.list_drift + 3 * grown < skin;
@@ -228,8 +229,8 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
             before = v;
             v = verdict_on(me, pass - 1, watched);
             ++verdicts;
-            if (!v.go_on) {  // this pass's forces are held for the next region
-              if (me == 0) held_pass = pass;
+            if (!v.go_on) {  // this pass's forces are dropped
+              if (me == 0) ++profile_.steps_dropped;
               break;
             }
             watched = v.spent && groups_found;
@@ -265,17 +266,15 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         }
       }
     }
-    if (held_pass >= 0) {
-      held_ = true;
-      held_worst_ = 0;
-      for (int t = 0; t < T; ++t) held_worst_ = std::max(held_worst_, out[(held_pass % S) * T + t].sums.worst);
-      ++profile_.steps_held;
-    }
-    // A pass computed ahead and held used its flag values: they are not used again.
+    // A pass computed ahead and dropped used its flag values: they are not used again.
     taken = done + 1;
     for (std::int64_t s = 0; s < done; ++s) blocks_.after_step(pairs_, wall_contacts_, runs_);
   }
   passes_ += taken;
+  if (turns && done % 2 == 1) {
+    std::swap(pairs_.history, pair_history_next_);
+    std::swap(wall_contacts_.history, wall_history_next_);
+  }
   const Verdict& last = recent_[1];
   list_drift_ = last.closing ? drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
                                               search_.wall_margin(), last_motion.spread())

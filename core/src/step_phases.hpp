@@ -30,16 +30,23 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
                            std::int64_t disc_lo, std::int64_t disc_hi, std::int64_t n,
                            ContactGrain grain);
 
+// Where a force pass reads the contacts' history and where it writes their new history: two
+// buffers taking turns, so a pass computed before the verdict on the step before it can be
+// dropped (World::forces_and_motion), or one buffer where none is. Each is laid out as
+// PairContacts::history.
+struct HistoryTurn {
+  const double* pairs_in;
+  double* pairs_out;
+  const double* walls_in;
+  double* walls_out;
+};
+
 // Contact forces of the range's pairs and disc–wall contacts (contact_forces.cpp): writes the
-// per-contact forces and torques and the new history, in place. Returns the largest guarded
-// overlap; with the ledger, the losses go to `ledger`'s blocks (LedgerBlocks::total).
+// per-contact forces and torques and the new history. Returns the largest guarded overlap;
+// with the ledger, the losses go to `ledger`'s blocks (LedgerBlocks::total).
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
-                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger);
-// The same for the listed pairs and wall contacts only, without the ledger: the contacts new
-// to the lists where a pass's forces were computed before the rebuild (World::rebuild_lists).
-PassSums contact_forces_of(const StepContext& step, const Particles& p, PairContacts& pairs,
-                           WallContacts& walls, const std::vector<std::int32_t>& pair_list,
-                           const std::vector<std::int32_t>& wall_list);
+                        WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
+                        const HistoryTurn& history);
 
 // Spring energies and committed losses of the touching contacts now (contact_forces.cpp).
 struct ContactEnergy {

@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <cmath>
-#include <stdexcept>
 #include <tuple>
 
 #include "step_phases.hpp"
@@ -70,9 +69,6 @@ void World::restore_history(const PairContacts& pairs, const WallContacts& walls
 // the same block (and cache). Contact history follows the discs. Done on a fixed step cadence,
 // so results stay bit-identical across thread counts and skins.
 void World::reorder_discs() {
-  // A held pass (held_) never reaches a reordering: a region ends at the step before one,
-  // judged at once (World::advance).
-  if (held_) throw std::logic_error("World::reorder_discs: a pass's forces are held");
   auto& p = particles_;
   const std::size_t n = p.size();
   if (n < 2) return;
@@ -163,7 +159,6 @@ void World::rebuild_lists() {
       radius_at_rebuild_[k] = p.radius[k];
     }
   }
-  if (held_) carry_held_forces();
   drift_.rebuilt(search_.largest_radius(), settings_.skin);
   recent_count_ = 0;
   list_drift_ = 0;
@@ -173,51 +168,6 @@ void World::rebuild_lists() {
   ++lists_version_;
   profile_.rebuild += seconds_since(t0);
   ++profile_.rebuilds;
-}
-
-// The held pass's forces (held_) into the lists just rebuilt at the positions they were
-// computed at. A contact of both lists keeps its pushes (its history the search carried). A
-// contact new to the lists is worked out now, from zero history: it did not touch while the
-// old lists held, and every pass before the held one ran with them. A contact only the old
-// lists had is beyond the skin: it pushed zero. So each disc's sum reads the pushes the
-// held pass would have computed with these lists, in their order (DiscRuns).
-void World::carry_held_forces() {
-  const PairContacts& old = search_.previous_pairs();
-  const WallContacts& old_walls = search_.previous_walls();
-  const auto n = static_cast<std::int32_t>(particles_.size());
-  std::vector<std::int32_t> new_pairs, new_walls;
-  const std::size_t on_j = pairs_.j_offset(), old_on_j = old.j_offset();
-  for (std::int32_t k = 0; k < n; ++k) {
-    std::int32_t a = old.row_start[k];
-    for (std::int32_t q = pairs_.row_start[k]; q < pairs_.row_start[k + 1]; ++q) {
-      while (a < old.row_start[k + 1] && old.j[a] < pairs_.j[q]) ++a;
-      if (a == old.row_start[k + 1] || old.j[a] != pairs_.j[q]) {
-        new_pairs.push_back(q);
-        continue;
-      }
-      for (auto [to, from] : {std::pair{std::size_t(q), std::size_t(a)}, std::pair{on_j + q, old_on_j + a}}) {
-        pairs_.fx[to] = old.fx[from];
-        pairs_.fy[to] = old.fy[from];
-        pairs_.torque[to] = old.torque[from];
-      }
-    }
-    std::int32_t w = old_walls.row_start[k];
-    for (std::int32_t q = wall_contacts_.row_start[k]; q < wall_contacts_.row_start[k + 1]; ++q) {
-      while (w < old_walls.row_start[k + 1] && old_walls.segment[w] < wall_contacts_.segment[q]) ++w;
-      if (w == old_walls.row_start[k + 1] || old_walls.segment[w] != wall_contacts_.segment[q]) {
-        new_walls.push_back(q);
-        continue;
-      }
-      wall_contacts_.fx[q] = old_walls.fx[w];
-      wall_contacts_.fy[q] = old_walls.fy[w];
-      wall_contacts_.torque[q] = old_walls.torque[w];
-    }
-  }
-  const phases::StepContext ctx{settings_, table_, segments_};
-  const PassSums fresh = phases::contact_forces_of(ctx, particles_, pairs_, wall_contacts_, new_pairs, new_walls);
-  held_worst_ = std::max(held_worst_, fresh.worst);
-  for (const std::int32_t q : new_pairs) profile_.held_new_touching += pairs_.fx[q] != 0.0 || pairs_.fy[q] != 0.0;
-  for (const std::int32_t q : new_walls) profile_.held_new_touching += wall_contacts_.fx[q] != 0.0 || wall_contacts_.fy[q] != 0.0;
 }
 
 // Symplectic Euler (the seed's, eqs. 2.15–2.18): [rebuild] forces, kick dt, drift dt.

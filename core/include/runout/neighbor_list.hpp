@@ -105,9 +105,6 @@ class NeighborSearch {
   const std::vector<double>& wall_margin() const { return wall_margin_; }
   // The largest radius at the last rebuild (0 without discs).
   double largest_radius() const { return largest_radius_; }
-  // The lists the last rebuild replaced, with their pushes (World::carry_held_forces).
-  const PairContacts& previous_pairs() const { return old_pairs_; }
-  const WallContacts& previous_walls() const { return old_walls_; }
 
  private:
   void runs_of(const PairContacts& pairs, DiscRuns& runs, int t, int T, std::int32_t lo,

@@ -54,8 +54,7 @@ struct StepSettings {
   double local_damping = 0;
   // When a step of several threads starts its forces before the verdict on the step before
   // (World::forces_and_motion): where the lists' bound leaves room for it, always (tests: every
-  // region a verdict ends then holds a step's forces for the next), or never; never with the
-  // ledger. No result depends on it.
+  // region a verdict ends then drops a step's forces), or never. No result depends on it.
   enum class Ahead { when_safe, always, never };
   Ahead ahead = Ahead::when_safe;
 };
@@ -65,11 +64,8 @@ struct StepProfile {
   double contact_forces = 0, integrate = 0, rebuild = 0;  // contact forces: pairs and walls
   std::int64_t rebuilds = 0;
   // Steps of several threads whose forces started before the verdict on the step before,
-  // and those of them held over to the next parallel region because that verdict ended the
-  // region (World::rebuild_lists brings their forces into the lists it rebuilds).
-  std::int64_t steps_ahead = 0, steps_held = 0;
-  // Contacts new to lists rebuilt after a held step that touched in it (worked out then).
-  std::int64_t held_new_touching = 0;
+  // and those of them dropped because that verdict ended the parallel region.
+  std::int64_t steps_ahead = 0, steps_dropped = 0;
 };
 
 // What one force pass returns besides the forces: the largest guarded overlap share and, with
@@ -226,11 +222,9 @@ class World {
   bool finite_ = true;
   // By pass, in turn (ListDrift::kSlots): a pass's sums are read while later ones are written.
   LedgerBlocks ledger_blocks_[ListDrift::kSlots];
-  // The next pass's forces, pushes and history, were computed by the last region (a pass
-  // ahead of the verdict that ended it), with their largest guarded overlap share.
-  bool held_ = false;
-  double held_worst_ = 0;
-  void carry_held_forces();
+  // The history's other buffer (phases::HistoryTurn): a force pass writes here, and the two
+  // are swapped once it counts.
+  HotArray<double> pair_history_next_, wall_history_next_;
   // Each thread's block of discs for a whole step (load_balance.hpp) and what hands one
   // block's results to the next (World::forces_and_motion).
   LoadBalance blocks_{LoadBalance::Work::step};
