@@ -1,8 +1,8 @@
 // What one system call costs on this machine: a futex wake with no one waiting (what
 // libgomp calls at every fork, join and barrier), sched_yield (what a two-thread runout step's
 // wait does after its spin) and getppid (the bare entry and exit). On the VMs of
-// docs/performance.md (issue 11, twenty-eighth session) each took ~1.2-1.8 us, some twenty
-// times a bare-metal call, so a wait that yields notices its flag that much later. Run it on
+// docs/performance.md (issue 11, twenty-eighth session) each took ~1.2-1.8 us, so a wait
+// that yields notices its flag that much later. Run it on
 // an otherwise idle machine: with another task runnable, sched_yield also times that task.
 //   g++ -O2 scripts/syscall_cost.cpp -o /tmp/syscall_cost
 //   /tmp/syscall_cost [CALLS=200000]   -> "futex_wake 1201 ns, sched_yield 1426 ns, getppid 1207 ns"
@@ -21,8 +21,7 @@ int main(int argc, char** argv) {
   char* end = nullptr;
   if (argc > 1) calls = std::strtol(argv[1], &end, 10);
   if (argc > 2 || calls < 1 || (argc > 1 && (end == argv[1] || *end != '\0'))) {
-    std::fprintf(stderr, "usage: syscall_cost [CALLS]: CALLS a positive whole count, got '%s'\n",
-                 argc > 1 ? argv[1] : "");
+    std::fprintf(stderr, "usage: syscall_cost [CALLS]: one argument, a positive whole count\n");
     return 2;
   }
   using Clock = std::chrono::steady_clock;
