@@ -24,8 +24,10 @@
 
 namespace {
 
+// An interruption: the time stamp counter span of a chunk less its median work (where in the
+// chunk the work fell is not known: the span is placed at the chunk's end, within one chunk).
 struct Stall {
-  std::uint64_t start, length;  // time stamp counter ticks
+  std::uint64_t from, to;
 };
 
 // Two dependent multiply-add chains: a fixed time on one core, no memory traffic.
@@ -108,14 +110,14 @@ int main(int argc, char** argv) {
     const double period = 1e-3 * hz;
     for (std::size_t k = 0; k < len.size(); ++k)
       if (len[k] > 3 * median) {
-        stalls[t].push_back({e[k], len[k] - median});
+        stalls[t].push_back({e[k + 1] - (len[k] - median), e[k + 1]});
         taken += len[k] - median;
         c += std::cos(2 * M_PI * std::fmod(static_cast<double>(e[k]), period) / period);
         s += std::sin(2 * M_PI * std::fmod(static_cast<double>(e[k]), period) / period);
       }
     const double wall = static_cast<double>(e.back() - e.front());
     std::vector<std::uint64_t> lengths;
-    for (const auto& st : stalls[t]) lengths.push_back(st.length);
+    for (const auto& st : stalls[t]) lengths.push_back(st.to - st.from);
     std::sort(lengths.begin(), lengths.end());
     const std::size_t n = lengths.size();
     std::printf("thread %zu: chunk %.2f us, taken %.2f %% of %.2f s in %zu interruptions (%.0f/s), "
@@ -132,13 +134,12 @@ int main(int argc, char** argv) {
     const auto& a = stalls[0];
     const auto& b = stalls[1];
     for (const auto& st : a) {
-      const std::uint64_t lo = st.start - st.length, hi = st.start;
-      while (j < b.size() && b[j].start < lo) ++j;
-      if (j < b.size() && b[j].start - b[j].length <= hi) ++both;
+      while (j < b.size() && b[j].to < st.from) ++j;
+      if (j < b.size() && b[j].from <= st.to) ++both;
     }
     std::vector<std::pair<std::uint64_t, std::uint64_t>> spans;
     for (const auto& v : stalls)
-      for (const auto& st : v) spans.emplace_back(st.start - st.length, st.start);
+      for (const auto& st : v) spans.emplace_back(st.from, st.to);
     std::sort(spans.begin(), spans.end());
     std::uint64_t covered = 0, lo = 0, hi = 0;
     for (const auto& [from, to] : spans) {
