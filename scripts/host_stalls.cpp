@@ -1,12 +1,14 @@
 // What the host takes from busy vCPUs: each of THREADS threads (pinned one per CPU) times a
-// fixed chunk of pure arithmetic (~2 us) back to back for SECONDS, with the time stamp counter.
+// fixed chunk of pure arithmetic (~1.7 us here) back to back for SECONDS, with the time stamp counter.
 // A chunk that takes more than three times the median was interrupted: the time over the
 // median is what the host (or the guest's own interrupts) took. It prints, per thread, the
 // share of the wall time taken, how many interruptions, their median length, how strongly
 // they keep step with a 1 ms clock (0 = no relation, 1 = every one at the same phase), and,
-// with two threads, how many interruptions of one overlap one of the other. Run it with one
-// thread and with two, alternated: what two busy vCPUs lose beyond one is a two-thread step's
-// loss that no code can win back. docs/performance.md, issue 11, twenty-ninth session.
+// with two threads, how many interruptions of one overlap one of the other and the share of
+// the time in which either is interrupted. Run it with one thread and with two, alternated:
+// what two busy vCPUs lose beyond one, a step whose threads meet every pass cannot win back.
+// (Pinning is best effort: on a machine with one CPU the threads run unpinned.)
+// docs/performance.md, issue 11, twenty-ninth session.
 //   g++ -O2 -pthread scripts/host_stalls.cpp -o /tmp/host_stalls
 //   /tmp/host_stalls [THREADS=2] [SECONDS=2]
 #include <pthread.h>
