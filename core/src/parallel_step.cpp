@@ -83,27 +83,44 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   Outcome on_stack[S * kOnStack];
   std::vector<Outcome> on_heap(T > kOnStack ? S * static_cast<std::size_t>(T) : 0);
   Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
-  // Thread 0 keeps the last pass's outcome and the region's totals; its verdict is recent_[1].
-  PassSums last_sums;
-  phases::Motion last_motion;
-  std::int64_t done = 0;
-  double forces_seconds = 0;  // thread 0's
+  // What thread 0 keeps of each pass (the last outcome, the region's totals, the verdicts) sits
+  // on cache lines of its own and goes back into the World once the region ends. Written
+  // every pass into World members and this frame's locals, it shared lines with what the
+  // other threads read every pass (the discs' array pointers, the closures below,
+  // max_growth_): each such line crossed the cores twice a pass (docs/performance.md, issue 11
+  // thirtieth session).
+  struct alignas(64) Kept {
+    PassSums last_sums;
+    phases::Motion last_motion;
+    std::int64_t done = 0;
+    double forces_seconds = 0;  // thread 0's
+    Verdict recent[2];
+    std::int64_t recent_count = 0;
+    double peak_impact = 0;
+    Dissipation ledger;
+    std::int64_t ahead = 0, dropped = 0;
+  } kept;
+  kept.recent[0] = recent_[0];
+  kept.recent[1] = recent_[1];
+  kept.recent_count = recent_count_;
+  kept.peak_impact = peak_impact_overlap_;
+  kept.ledger = ledger_;
   const auto t0 = Clock::now();
   // What thread 0 keeps of each pass, once every block's outcome is out.
   auto settle = [&](std::int64_t pass, const Verdict& v, const PassSums& sums, const phases::Motion& m) {
     if (ledger) {
       const PassSums total = ledger_blocks_[pass % S].total();
-      ledger_.normal += total.loss_normal;
-      ledger_.friction += total.loss_friction;
-      ledger_.rolling += total.loss_rolling;
+      kept.ledger.normal += total.loss_normal;
+      kept.ledger.friction += total.loss_friction;
+      kept.ledger.rolling += total.loss_rolling;
     }
-    if (forces) peak_impact_overlap_ = std::max(peak_impact_overlap_, sums.worst * guard_radius_scale_);
-    recent_[0] = recent_[1];
-    recent_[1] = v;
-    ++recent_count_;
-    last_sums = sums;
-    last_motion = m;
-    ++done;
+    if (forces) kept.peak_impact = std::max(kept.peak_impact, sums.worst * guard_radius_scale_);
+    kept.recent[0] = kept.recent[1];
+    kept.recent[1] = v;
+    ++kept.recent_count;
+    kept.last_sums = sums;
+    kept.last_motion = m;
+    ++kept.done;
   };
   std::int64_t taken = 0;  // flag values used: the passes done, and one computed ahead and dropped
   if (T == 1) {
@@ -111,7 +128,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     const std::int64_t pass = passes_ + 1;
     PassSums sums;
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass, 0);
-    forces_seconds = seconds_since(t0);
+    kept.forces_seconds = seconds_since(t0);
     const phases::Motion motion = motion_of(0, n);
     settle(pass, judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
     taken = 1;
@@ -210,9 +227,8 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         // drop them (the history's two buffers; `ahead`); the region's last pass is judged at
         // once.
         // The last two verdicts, since the lists were built: a region goes on from where the
-        // one before it ended (a turn of the blocks, a reordering, the caller's steps). Read
-        // before this thread's first pass, which thread 0 settles (writing recent_) only once
-        // every thread has done it.
+        // one before it ended (a turn of the blocks, a reordering, the caller's steps). Thread 0
+        // writes recent_ only after the region.
         Verdict v = recent_[1], before = recent_[0];
         std::int64_t verdicts = recent_count_;
         bool pending = false;
@@ -222,7 +238,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
           const auto start = Clock::now();
           const auto counted_from = k == 0 ? region_start : start;
           forces_of(me, pass, k);
-          if (me == 0) forces_seconds += seconds_since(start);
+          if (me == 0) kept.forces_seconds += seconds_since(start);
           const double busy = seconds_since(counted_from);
           if (pending) {
             pending = false;
@@ -230,7 +246,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
             v = verdict_on(me, pass - 1, watched);
             ++verdicts;
             if (!v.go_on) {  // this pass's forces are dropped
-              if (me == 0) ++profile_.steps_dropped;
+              if (me == 0) ++kept.dropped;
               break;
             }
             watched = v.spent && groups_found;
@@ -240,7 +256,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
           move_block(me, pass, watched);
           blocks_.record(me, busy + seconds_since(resumed));
           if (k + 1 < passes && verdicts >= 2 && ahead(v, before)) {
-            if (me == 0) ++profile_.steps_ahead;
+            if (me == 0) ++kept.ahead;
             pending = true;
             continue;
           }
@@ -267,9 +283,17 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       }
     }
     // A pass computed ahead and dropped used its flag values: they are not used again.
-    taken = done + 1;
-    for (std::int64_t s = 0; s < done; ++s) blocks_.after_step(pairs_, wall_contacts_, runs_);
+    taken = kept.done + 1;
+    for (std::int64_t s = 0; s < kept.done; ++s) blocks_.after_step(pairs_, wall_contacts_, runs_);
   }
+  recent_[0] = kept.recent[0];
+  recent_[1] = kept.recent[1];
+  recent_count_ = kept.recent_count;
+  peak_impact_overlap_ = kept.peak_impact;
+  ledger_ = kept.ledger;
+  profile_.steps_ahead += kept.ahead;
+  profile_.steps_dropped += kept.dropped;
+  const std::int64_t done = kept.done;
   passes_ += taken;
   if (turns && done % 2 == 1) {
     std::swap(pairs_.history, pair_history_next_);
@@ -277,13 +301,13 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   }
   const Verdict& last = recent_[1];
   list_drift_ = last.closing ? drift_.closing(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_,
-                                              search_.wall_margin(), last_motion.spread())
+                                              search_.wall_margin(), kept.last_motion.spread())
                              : last.list_drift;
   watch_groups_ = last.spent;
-  finite_ = last_motion.finite;
-  profile_.contact_forces += forces_seconds;
-  profile_.integrate += seconds_since(t0) - forces_seconds;
-  if (forces) check_overlap(last_sums.worst);
+  finite_ = kept.last_motion.finite;
+  profile_.contact_forces += kept.forces_seconds;
+  profile_.integrate += seconds_since(t0) - kept.forces_seconds;
+  if (forces) check_overlap(kept.last_sums.worst);
   return done;
 }
 
