@@ -87,7 +87,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   // on cache lines of its own and goes back into the World once the region ends. Written
   // every pass into World members and this frame's locals, it shared lines with what the
   // other threads read every pass (the discs' array pointers, the closures below,
-  // max_growth_): each such line crossed the cores twice a pass (docs/performance.md, issue 11
+  // max_growth_): such a line may cross the cores twice a pass (docs/performance.md, issue 11
   // thirtieth session).
   struct alignas(64) Kept {
     PassSums last_sums;
