@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Waits for the host's fast mode and measures two threads against one the moment it comes.
+# On this VM kind the two vCPUs' cache-line round trip swings between ~100 ns (fast) and
+# ~450 ns (slow), and the fast mode comes for seconds at a time (docs/performance.md, issue 11
+# thirty-first session). This reads the round trip about once a second; when one is under
+# LIMIT ns it runs the nine-round thread_scaling go, then the in-run comparison and the
+# ceiling, into OUT/go_N.txt, and then goes back to waiting until MINUTES have passed.
+# Every round trip read goes to OUT/round_trips.txt.
+# Usage: scripts/fast_mode_go.sh BIN ROUND_TRIP_BIN [MINUTES=60] [OUT=fast_mode_gos] [LIMIT=160]
+#   ROUND_TRIP_BIN: g++ -O2 -pthread scripts/line_round_trip.cpp -o /tmp/line_round_trip
+set -euo pipefail
+B=$1; RT=$2; M=${3:-60}; OUT=${4:-fast_mode_gos}; LIMIT=${5:-160}
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$OUT"
+deadline=$(( $(date +%s) + 60 * M )); n=0
+trip() { "$RT" | sed -n 's/^round trip: \([0-9]*\) ns$/\1/p'; }
+while [ "$(date +%s)" -lt "$deadline" ]; do
+  t=$(trip)
+  echo "$(date -u +%H:%M:%S) $t" >> "$OUT/round_trips.txt"
+  if [ -n "$t" ] && [ "$t" -lt "$LIMIT" ]; then
+    n=$((n + 1))
+    {
+      echo "== start $(date -u +%H:%M:%S), round trip $t ns"
+      echo "== thread_scaling 9 20000"
+      ROUND_TRIP=$RT "$here/thread_scaling.sh" "$B" 9 20000
+      echo "== bench --threads 2 --against-threads 1 --steps 20000 (round trip $(trip) ns)"
+      "$B" bench --threads 2 --against-threads 1 --steps 20000 2>/dev/null | grep -E '^(particle_steps|against_particle|speedup)'
+      echo "== bench --threads 2 --against-threads 1 --ceiling --steps 20000 (round trip $(trip) ns)"
+      "$B" bench --threads 2 --against-threads 1 --ceiling --steps 20000 2>/dev/null | grep -E '^(speedup|ceiling_.*speedup)'
+      echo "== end $(date -u +%H:%M:%S), round trip $(trip) ns"
+    } > "$OUT/go_$n.txt.part"
+    mv "$OUT/go_$n.txt.part" "$OUT/go_$n.txt"
+    echo "$(date -u +%H:%M:%S) go $n" >> "$OUT/round_trips.txt"
+  fi
+  sleep 1
+done
