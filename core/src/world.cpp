@@ -64,10 +64,13 @@ void World::restore_history(const PairContacts& pairs, const WallContacts& walls
   rebuild_lists();
 }
 
-// Renumbers the discs along x (then y) in cells of about one large diameter, so each thread's
-// contiguous block of discs is a compact stretch of the flow and its neighbours mostly live in
-// the same block (and cache). Contact history follows the discs. Done on a fixed step cadence,
-// so results stay bit-identical across thread counts and skins.
+// Renumbers the discs along x (in strips a hundredth of a large radius wide, then by y), so each
+// thread's contiguous block of discs is a stretch of the flow cut from the next by a straight
+// line across it: its neighbours mostly live in the same block (and cache), and the fewest pairs
+// and cache lines cross between the threads each step (columns one large diameter wide cut
+// part-way up a column, with twice the crossing lines; docs/performance.md, issue 11
+// twenty-ninth and thirty-fourth sessions). Contact history follows the discs. Done on a fixed
+// step cadence, so results stay bit-identical across thread counts and skins.
 void World::reorder_discs() {
   auto& p = particles_;
   const std::size_t n = p.size();
@@ -76,7 +79,7 @@ void World::reorder_discs() {
   for (std::size_t k = 0; k < n; ++k) {
     xmin = std::min(xmin, p.x[k]); ymin = std::min(ymin, p.y[k]); rmax = std::max(rmax, p.radius[k]);
   }
-  const double cell = std::max(2.0 * rmax, 1e-12);
+  const double cell = std::max(0.01 * rmax, 1e-12);
   std::vector<std::pair<std::int64_t, std::int64_t>> key(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto cx = static_cast<std::int64_t>((p.x[k] - xmin) / cell);

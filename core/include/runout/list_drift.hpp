@@ -8,7 +8,7 @@
 // farther than the skin the wall was (NeighborSearch::wall_margin). A flow that shears then
 // does not stale its lists in one place because another place moves differently, nor because
 // the flow slides along the bed; the discs are numbered along the flow
-// (World::reorder_discs), so a group is compact.
+// (World::reorder_discs), so a group is a narrow slice of it.
 #pragma once
 
 #include <algorithm>
