@@ -356,5 +356,24 @@ TEST(Renumbering, SettledPileKeepsEachDiscsSize) {
   }
 }
 
+// Discs are numbered along x (World::reorder_discs), also where explicit discs lie as far apart
+// as a scene allows (coordinates up to 1e9 m from the origin) and are a millimetre wide: strips
+// of 0.01 r_max would number 4e14 of them, and the packed sort key would overflow.
+TEST(Renumbering, DiscsFarApartAreNumberedAlongX) {
+  SceneDef s;
+  s.species = {{"disc", 0.001, 0.0, 0.0}};
+  for (double x : {9e8, -9e8, 0.0, 4e8, -3e8, 1e3, -7e8, 2e8})
+    s.particles.push_back(testing::disc(x, 0.0, 0.001));
+  const SceneSetup setup = derive_setup(s);
+  const World built = build_explicit_world(s, setup, 1);
+  StepSettings st = built.settings();
+  st.reorder_every = 1;
+  World w(built.particles(), built.segments(), built.table(), st);
+  w.step();
+  const auto& p = w.particles();
+  for (std::size_t k = 1; k < p.size(); ++k)
+    EXPECT_LT(p.x[k - 1], p.x[k]) << "discs " << p.id[k - 1] << " and " << p.id[k] << " out of order";
+}
+
 }  // namespace
 }  // namespace runout

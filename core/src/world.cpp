@@ -5,6 +5,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -75,11 +76,16 @@ void World::reorder_discs() {
   auto& p = particles_;
   const std::size_t n = p.size();
   if (n < 2) return;
-  double xmin = p.x[0], ymin = p.y[0], rmax = 0;
+  double xmin = p.x[0], xmax = p.x[0], ymin = p.y[0], ymax = p.y[0], rmax = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    xmin = std::min(xmin, p.x[k]); ymin = std::min(ymin, p.y[k]); rmax = std::max(rmax, p.radius[k]);
+    xmin = std::min(xmin, p.x[k]); xmax = std::max(xmax, p.x[k]);
+    ymin = std::min(ymin, p.y[k]); ymax = std::max(ymax, p.y[k]);
+    rmax = std::max(rmax, p.radius[k]);
   }
-  const double cell = std::max(0.01 * rmax, 1e-12);
+  // Wider strips only where the discs span more than 2^30 of them (explicit discs may lie up to
+  // 2e9 m apart), so each strip and row index stays below 2^30 and the packed key below 2^62.
+  const double span = std::max(xmax - xmin, ymax - ymin);
+  const double cell = std::max({0.01 * rmax, span / static_cast<double>(1 << 30), 1e-12});
   std::vector<std::pair<std::int64_t, std::int64_t>> key(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto cx = static_cast<std::int64_t>((p.x[k] - xmin) / cell);
