@@ -18,7 +18,7 @@ namespace {
 void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns& runs,
                    std::int64_t lo, std::int64_t hi, double gx, double gy,
                    const double* __restrict inv_mass, const double* __restrict inv_inertia,
-                   double* __restrict ax, double* __restrict ay, double* __restrict alpha) {
+                   const Accelerations& a) {
   constexpr std::int64_t L = DiscRuns::kSlice;
   // An empty block starts at n, which need not start a slice: its first slice would be the
   // last slice of the block before, summed here a second time by another thread (a race on
@@ -30,6 +30,10 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
   const std::int32_t* __restrict slice_start = runs.slice_start.data();
   const std::int32_t* __restrict src = runs.source.data();
   const std::int32_t* __restrict lane_disc = runs.lane_disc.data();
+  double* __restrict ax = a.x;
+  double* __restrict ay = a.y;
+  double* __restrict alpha = a.angular;
+  const std::int64_t first = a.first;
   for (std::int64_t g = lo / L; g * L < hi; ++g) {
     double sx[L] = {}, sy[L] = {}, st[L] = {};
     for (std::int64_t s = slice_start[g]; s < slice_start[g + 1]; s += L)
@@ -39,19 +43,19 @@ void accelerations(const PairContacts& c, const WallContacts& w, const DiscRuns&
       }
     for (std::int64_t l = 0; l < L; ++l)
       if (const std::int32_t k = lane_disc[g * L + l]; k >= 0) {
-        ax[k] = sx[l]; ay[k] = sy[l]; alpha[k] = st[l];
+        ax[k - first] = sx[l]; ay[k - first] = sy[l]; alpha[k - first] = st[l];
       }
   }
   // Few discs touch a wall: adding their contacts after all rows keeps each disc's order
   // (walls last, by segment) without a loop per disc.
   for (std::int32_t q = w.row_start[lo]; q < w.row_start[hi]; ++q) {
-    const std::int32_t k = w.disc[q];
+    const std::int64_t k = w.disc[q] - first;
     ax[k] += w.fx[q]; ay[k] += w.fy[q]; alpha[k] += w.torque[q];
   }
   for (std::int64_t k = lo; k < hi; ++k) {
-    ax[k] = ax[k] * inv_mass[k] + gx;
-    ay[k] = ay[k] * inv_mass[k] + gy;
-    alpha[k] = alpha[k] * inv_inertia[k];
+    ax[k - first] = ax[k - first] * inv_mass[k] + gx;
+    ay[k - first] = ay[k - first] * inv_mass[k] + gy;
+    alpha[k - first] = alpha[k - first] * inv_inertia[k];
   }
 }
 
@@ -114,18 +118,22 @@ double Motion::spread() const {
 Motion advance(const StepContext& step, Particles& p, const PairContacts& c,
                const WallContacts& w, const DiscRuns& runs, const HotArray<double>& x_at_rebuild,
                const HotArray<double>& y_at_rebuild, std::int64_t lo, std::int64_t hi,
-               bool gather, double kick, double drift) {
+               bool gather, double kick, double drift, const Accelerations& a) {
   const StepSettings& st = step.settings;
+  // The kick and drift see disc k's acceleration at [k - a.first]: offset views of the
+  // discs' arrays from lo, so one loop serves every layout of them.
+  const std::int64_t count = hi - lo, at = lo - a.first;
+  if (count <= 0) return Motion{};
   if (gather) {
     accelerations(c, w, runs, lo, hi, st.gravity.x(), st.gravity.y(), p.inv_mass.data(),
-                  p.inv_inertia.data(), p.ax.data(), p.ay.data(), p.alpha.data());
+                  p.inv_inertia.data(), a);
     if (st.local_damping > 0)
-      damp(st.local_damping, lo, hi, p.ax.data(), p.ay.data(), p.alpha.data(), p.vx.data(),
-           p.vy.data(), p.omega.data());
+      damp(st.local_damping, 0, count, a.x + at, a.y + at, a.angular + at, p.vx.data() + lo,
+           p.vy.data() + lo, p.omega.data() + lo);
   }
-  return kick_drift(lo, hi, kick, drift, p.x.data(), p.y.data(), p.vx.data(), p.vy.data(),
-                    p.omega.data(), p.angle.data(), p.ax.data(), p.ay.data(), p.alpha.data(),
-                    x_at_rebuild.data(), y_at_rebuild.data());
+  return kick_drift(0, count, kick, drift, p.x.data() + lo, p.y.data() + lo, p.vx.data() + lo,
+                    p.vy.data() + lo, p.omega.data() + lo, p.angle.data() + lo, a.x + at, a.y + at,
+                    a.angular + at, x_at_rebuild.data() + lo, y_at_rebuild.data() + lo);
 }
 
 }  // namespace runout::phases

@@ -67,9 +67,20 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
                                   {pair_lo, pair_hi, wall_lo, wall_hi},
                                   ledger_blocks_[pass % S], turn[k & 1]);
   };
-  auto motion_of = [&](std::int64_t lo, std::int64_t hi) {
+  // Where block t's accelerations go: the discs' arrays with one thread, or where velocity
+  // Verlet keeps them for its next call; else the block's own pages from its first disc.
+  const bool keep_accelerations = T == 1 || settings_.integrator == IntegratorKind::velocity_verlet;
+  const std::vector<std::int64_t>* bounds = nullptr;  // the blocks' (set below with several threads)
+  auto accelerations_of = [&](int t) {
+    if (keep_accelerations)
+      return phases::Accelerations{particles_.ax.data(), particles_.ay.data(), particles_.alpha.data(), 0};
+    BlockAccelerations& own = block_accelerations_[t];
+    return phases::Accelerations{own.x.data(), own.y.data(), own.angular.data(), (*bounds)[t]};
+  };
+  auto motion_of = [&](int t, std::int64_t lo, std::int64_t hi) {
+    const phases::Accelerations a = accelerations_of(t);
     return phases::advance(ctx, particles_, pairs_, wall_contacts_, runs_, x_at_rebuild_,
-                           y_at_rebuild_, lo, hi, forces, kick, drift);
+                           y_at_rebuild_, lo, hi, forces, kick, drift, a);
   };
   // Each block's outcome on a cache line of its own, by pass in turn (a thread may write a
   // later pass's while another still reads this one's), a handful on the stack: arrays of
@@ -129,7 +140,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     PassSums sums;
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass, 0);
     kept.forces_seconds = seconds_since(t0);
-    const phases::Motion motion = motion_of(0, n);
+    const phases::Motion motion = motion_of(0, 0, n);
     settle(pass, judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
     taken = 1;
   } else {
@@ -139,6 +150,19 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // their rows reach its discs (the handoff), and each thread computes those rows first.
     blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
     const std::vector<std::int64_t>& b = blocks_.bounds();
+    bounds = &b;
+    if (!keep_accelerations) {
+      block_accelerations_.resize(static_cast<std::size_t>(T));
+      for (int t = 0; t < T; ++t) {
+        const auto size = static_cast<std::size_t>(b[t + 1] - b[t]);
+        BlockAccelerations& own = block_accelerations_[t];
+        if (own.x.size() < size) {
+          own.x.resize(size);
+          own.y.resize(size);
+          own.angular.resize(size);
+        }
+      }
+    }
     const ContactGrain grain = contact_grain(settings_.track_energy);
     if (!handoff_.current(lists_version_, blocks_.version(), grain, T))
       handoff_.find(pairs_, wall_contacts_, runs_, b, lists_version_, blocks_.version(), grain);
@@ -184,9 +208,9 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     auto move_block = [&](int t, std::int64_t pass, bool watched) {
       Outcome& mine = out[(pass % S) * T + t];
       const std::int64_t mid = handoff_.first_free[t];
-      const phases::Motion reached = motion_of(b[t], mid);
+      const phases::Motion reached = motion_of(t, b[t], mid);
       ready_.flag[t].moved.store(pass, std::memory_order_release);
-      mine.motion = phases::Motion::merge(reached, motion_of(mid, b[t + 1]));
+      mine.motion = phases::Motion::merge(reached, motion_of(t, mid, b[t + 1]));
       if (watched) mine.drift = drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_, t, static_cast<int>(pass % S));
       ready_.flag[t].done.store(pass, std::memory_order_release);
     };

@@ -72,9 +72,16 @@ struct Motion {
   // The largest displacement: how much closer a disc came to a fixed wall.
   double largest() const { return std::sqrt(max_displacement2); }
 };
+// Where a pass puts the accelerations of discs [lo, hi): disc k's at [k - first].
+struct Accelerations {
+  double* x;
+  double* y;
+  double* angular;
+  std::int64_t first = 0;
+};
 Motion advance(const StepContext& step, Particles& p, const PairContacts& pairs,
                const WallContacts& walls, const DiscRuns& runs, const HotArray<double>& x0,
                const HotArray<double>& y0, std::int64_t lo, std::int64_t hi, bool gather,
-               double kick, double drift);
+               double kick, double drift, const Accelerations& a);
 
 }  // namespace runout::phases

@@ -210,6 +210,15 @@ class World {
   double time_ = 0;
   std::int64_t steps_ = 0;
 
+  // Each thread's accelerations of its block's discs in a pass of several threads
+  // (phases::Accelerations), each on pages of its own: written into the discs' arrays, a
+  // thread's stream ran on into the next block's lines (docs/performance.md, issue 11,
+  // thirty-fifth session). Velocity Verlet keeps its accelerations in Particles between calls.
+  struct BlockAccelerations {
+    HotArray<double> x, y, angular;
+  };
+  std::vector<BlockAccelerations> block_accelerations_;
+
   // Verlet-list validity (SPEC §5): see World::step.
   HotArray<double> x_at_rebuild_, y_at_rebuild_, radius_at_rebuild_;
   double list_drift_ = 0;  // bound on how much closer any two bodies came since the rebuild (m)
