@@ -7,8 +7,12 @@
 // earlier half streamed by one thread while the other only meets it at the barrier is the floor.
 //
 //   g++ -O3 -march=native -fopenmp scripts/block_boundary_bench.cpp -o /tmp/block_boundary_bench
-//   GOMP_SPINCOUNT=2000 /tmp/block_boundary_bench [ROUNDS=3] [STEPS=20000]
+//   GOMP_SPINCOUNT=2000 /tmp/block_boundary_bench [ROUNDS=3] [STEPS=20000] [gaps]
+// With `gaps`, the adjacent layout with 0 to 512 doubles between the halves instead: how far
+// the prefetchers run on (docs/performance.md, issue 11, thirty-fifth session).
 #include <omp.h>
+
+#include <string_view>
 
 #include <chrono>
 #include <cstdio>
@@ -28,8 +32,8 @@ void update(double* __restrict x, double* __restrict v, int i) {
   x[i] += v[i] * 1e-6;
 }
 
-double step_us(Layout layout, int steps) {
-  const int gap = layout == Layout::page_apart ? kPage : 0;
+double step_us(Layout layout, int steps, int gap_between = 0) {
+  const int gap = layout == Layout::page_apart ? kPage : gap_between;
   const std::size_t bytes = ((kDiscs + gap) * sizeof(double) + 4095) / 4096 * 4096;
   std::vector<double*> a(kArrays);
   for (auto& p : a) {
@@ -62,6 +66,15 @@ double step_us(Layout layout, int steps) {
 
 int main(int argc, char** argv) {
   const int rounds = argc > 1 ? std::atoi(argv[1]) : 3, steps = argc > 2 ? std::atoi(argv[2]) : 20000;
+  if (argc > 3 && std::string_view(argv[3]) == "gaps") {
+    for (int r = 1; r <= rounds; ++r) {
+      std::printf("round %d, us a step by gap (doubles):", r);
+      for (const int gap : {0, 8, 16, 32, 64, 128, 256, 512})
+        std::printf("  %d: %.2f", gap, step_us(Layout::adjacent, steps, gap));
+      std::printf("\n");
+    }
+    return 0;
+  }
   for (int r = 1; r <= rounds; ++r)
     std::printf("round %d, us a step: adjacent halves %.2f, a page apart %.2f, adjacent with the earlier "
                 "thread streaming down %.2f, the earlier half alone %.2f\n",
