@@ -196,19 +196,31 @@ WallSource wall_source(const StepContext& step, const Particles& p, const WallCo
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
 }
 
+// The World's tables of the model's laws if the context holds them, else derived here.
+template <class Model>
+const typename Model::Tables& laws_of(const LawTables* laws, bool pairs,
+                                      const std::vector<PairCoefficients>& rows,
+                                      typename Model::Tables& here) {
+  const std::shared_ptr<const void>* derived = laws ? (pairs ? &laws->pairs : &laws->walls) : nullptr;
+  if (derived && *derived) return *static_cast<const typename Model::Tables*>(derived->get());
+  here = Model::tables(rows);
+  return here;
+}
+
 template <class Model, bool kLedger>
 PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& pairs,
                      WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
                      const HistoryTurn& history) {
   const StepSettings& st = step.settings;
-  const auto pair_law = Model::tables(step.table.pair);
+  typename Model::Tables pair_here, wall_here;
+  const auto& pair_law = laws_of<Model>(step.laws, true, step.table.pair, pair_here);
   const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law),
                                               st.impact_rate, history.pairs_in, history.pairs_out,
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque.data(),
                                               static_cast<std::int64_t>(pairs.j_offset())};
-  const auto wall_law = Model::tables(step.table.wall);
+  const auto& wall_law = laws_of<Model>(step.laws, false, step.table.wall, wall_here);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, history.walls_in, history.walls_out,
                                               static_cast<std::int64_t>(walls.size()),
@@ -254,6 +266,16 @@ ContactRange contact_range(const PairContacts& pairs, const WallContacts& walls,
           at(pairs.row_start, disc_hi, np, grain.pairs),
           at(walls.row_start, disc_lo, nw, grain.walls),
           at(walls.row_start, disc_hi, nw, grain.walls)};
+}
+
+LawTables derive_laws(const ContactChoice& contact, const ContactTable& table) {
+  LawTables laws;
+  dispatch(contact, [&](auto model) {
+    using Model = decltype(model);
+    laws.pairs = std::make_shared<const typename Model::Tables>(Model::tables(table.pair));
+    laws.walls = std::make_shared<const typename Model::Tables>(Model::tables(table.wall));
+  });
+  return laws;
 }
 
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,

@@ -21,7 +21,13 @@ struct StepContext {
   const StepSettings& settings;
   const ContactTable& table;
   const std::vector<Segment>& segments;
+  // The contact model's parameter tables for pairs and for walls (ContactModel::Tables of
+  // settings.contact's model, derive_laws), derived once with the World: derived at every
+  // pass of every thread, they cost six allocations each time, ~0.5 us a pass and thread
+  // (docs/performance.md, issue 11, thirty-fifth session). Without them a phase derives its own.
+  const LawTables* laws = nullptr;
 };
+LawTables derive_laws(const ContactChoice& contact, const ContactTable& table);
 
 // The contacts a thread computes for its block of discs [disc_lo, disc_hi): the pairs of the
 // block's rows and its discs' wall contacts, each end moved up to the grain's next end.

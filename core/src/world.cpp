@@ -27,6 +27,7 @@ World::World(Particles particles, std::vector<Segment> segments, ContactTable ta
     history_width_ = Model::kHistory;
     normal_history_width_ = Model::NormalLaw::kHistory;
   });
+  laws_ = phases::derive_laws(settings_.contact, table_);
 }
 
 void World::forget_normal_history() {

@@ -110,6 +110,12 @@ inline constexpr int kMaxThreads = 256;
 
 namespace phases { struct Motion; }  // step_phases.hpp
 
+// The contact model's parameter tables (ContactModel::Tables) for pairs and for walls, held
+// without their type: derived once from the World's table (phases::derive_laws).
+struct LawTables {
+  std::shared_ptr<const void> pairs, walls;
+};
+
 class World {
  public:
   World(Particles particles, std::vector<Segment> segments, ContactTable table,
@@ -209,6 +215,8 @@ class World {
   Dissipation ledger_;
   double time_ = 0;
   std::int64_t steps_ = 0;
+
+  LawTables laws_;  // the contact model's parameter tables, derived with the World
 
   // Each thread's accelerations of its block's discs in a pass of several threads
   // (phases::Accelerations), each on pages of its own: written into the discs' arrays, a
