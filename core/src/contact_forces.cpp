@@ -196,15 +196,10 @@ WallSource wall_source(const StepContext& step, const Particles& p, const WallCo
   return {p, step.segments, c.disc.data(), c.segment.data(), step.settings.dt};
 }
 
-// The World's tables of the model's laws if the context holds them, else derived here.
+// The World's tables of the model's laws (derive_laws made them for this Model).
 template <class Model>
-const typename Model::Tables& laws_of(const LawTables* laws, bool pairs,
-                                      const std::vector<PairCoefficients>& rows,
-                                      typename Model::Tables& here) {
-  const std::shared_ptr<const void>* derived = laws ? (pairs ? &laws->pairs : &laws->walls) : nullptr;
-  if (derived && *derived) return *static_cast<const typename Model::Tables*>(derived->get());
-  here = Model::tables(rows);
-  return here;
+const typename Model::Tables& tables_of(const std::shared_ptr<const void>& derived) {
+  return *static_cast<const typename Model::Tables*>(derived.get());
 }
 
 template <class Model, bool kLedger>
@@ -212,15 +207,14 @@ PassSums forces_with(const StepContext& step, const Particles& p, PairContacts& 
                      WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
                      const HistoryTurn& history) {
   const StepSettings& st = step.settings;
-  typename Model::Tables pair_here, wall_here;
-  const auto& pair_law = laws_of<Model>(step.laws, true, step.table.pair, pair_here);
+  const auto& pair_law = tables_of<Model>(step.laws.pairs);
   const Kernel<Model, kLedger, PairSource> pk{pair_source(step, p, pairs), Model::row(pair_law),
                                               st.impact_rate, history.pairs_in, history.pairs_out,
                                               static_cast<std::int64_t>(pairs.size()),
                                               pairs.fx.data(), pairs.fy.data(),
                                               pairs.torque.data(),
                                               static_cast<std::int64_t>(pairs.j_offset())};
-  const auto& wall_law = laws_of<Model>(step.laws, false, step.table.wall, wall_here);
+  const auto& wall_law = tables_of<Model>(step.laws.walls);
   const Kernel<Model, kLedger, WallSource> wk{wall_source(step, p, walls), Model::row(wall_law),
                                               st.impact_rate, history.walls_in, history.walls_out,
                                               static_cast<std::int64_t>(walls.size()),
@@ -296,9 +290,9 @@ ContactEnergy contact_energy(const StepContext& step, const Particles& p,
   ContactEnergy e;
   dispatch(step.settings.contact, [&](auto model) {
     using Model = decltype(model);
-    energy_of<Model>(pair_source(step, p, pairs), Model::tables(step.table.pair),
+    energy_of<Model>(pair_source(step, p, pairs), tables_of<Model>(step.laws.pairs),
                      pairs.history, static_cast<std::int64_t>(pairs.size()), e);
-    energy_of<Model>(wall_source(step, p, walls), Model::tables(step.table.wall),
+    energy_of<Model>(wall_source(step, p, walls), tables_of<Model>(step.laws.walls),
                      walls.history, static_cast<std::int64_t>(walls.size()), e);
   });
   return e;

@@ -41,7 +41,7 @@ World::Verdict World::judge(const PassSums& sums, const phases::Motion& motion, 
 }
 
 std::int64_t World::forces_and_motion(bool forces, double kick, double drift, std::int64_t passes) {
-  const phases::StepContext ctx{settings_, table_, segments_, &laws_};
+  const phases::StepContext ctx{settings_, table_, segments_, laws_};
   const auto n = static_cast<std::int64_t>(particles_.size());
   const bool ledger = forces && settings_.track_energy;
   if (ledger)
@@ -70,12 +70,11 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   // Where block t's accelerations go: the discs' arrays with one thread, or where velocity
   // Verlet keeps them for its next call; else the block's own pages from its first disc.
   const bool keep_accelerations = T == 1 || settings_.integrator == IntegratorKind::velocity_verlet;
-  const std::vector<std::int64_t>* bounds = nullptr;  // the blocks' (set below with several threads)
   auto accelerations_of = [&](int t) {
     if (keep_accelerations)
       return phases::Accelerations{particles_.ax.data(), particles_.ay.data(), particles_.alpha.data(), 0};
     BlockAccelerations& own = block_accelerations_[t];
-    return phases::Accelerations{own.x.data(), own.y.data(), own.angular.data(), (*bounds)[t]};
+    return phases::Accelerations{own.x.data(), own.y.data(), own.angular.data(), own.first};
   };
   auto motion_of = [&](int t, std::int64_t lo, std::int64_t hi) {
     const phases::Accelerations a = accelerations_of(t);
@@ -150,12 +149,12 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // their rows reach its discs (the handoff), and each thread computes those rows first.
     blocks_.prepare(pairs_, wall_contacts_, runs_, n, T);
     const std::vector<std::int64_t>& b = blocks_.bounds();
-    bounds = &b;
     if (!keep_accelerations) {
       block_accelerations_.resize(static_cast<std::size_t>(T));
       for (int t = 0; t < T; ++t) {
         const auto size = static_cast<std::size_t>(b[t + 1] - b[t]);
         BlockAccelerations& own = block_accelerations_[t];
+        own.first = b[t];
         if (own.x.size() < size) {
           own.x.resize(size);
           own.y.resize(size);

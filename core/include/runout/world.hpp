@@ -223,7 +223,8 @@ class World {
   // thread's stream ran on into the next block's lines (docs/performance.md, issue 11,
   // thirty-fifth session). Velocity Verlet keeps its accelerations in Particles between calls.
   struct BlockAccelerations {
-    HotArray<double> x, y, angular;
+    HotArray<double> x, y, angular;  // of discs first, first + 1, ... of the block
+    std::int64_t first = 0;
   };
   std::vector<BlockAccelerations> block_accelerations_;
 
