@@ -44,7 +44,7 @@ void CellGrid::build(const Particles& p, double skin) {
   for (std::int32_t k = 0; k < n; ++k) {
     const auto cx = std::min(ncx - 1, static_cast<std::int32_t>((p.x[k] - xmin) * inv_cell));
     const auto cy = std::min(ncy - 1, static_cast<std::int32_t>((p.y[k] - ymin) * inv_cell));
-    disc_cell[k] = cy * ncx + cx;
+    disc_cell[k] = cx * ncy + cy;
     ++cell_start[disc_cell[k] + 1];
   }
   std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());

@@ -201,27 +201,28 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       // chunks as threads came free, every row was written by both threads, their counts and
       // cursors crossed between the cores, and a row's lines then went back to its thread in
       // the step (docs/performance.md, issue 11, twenty-fourth session).
-      const std::int32_t ncx = g.ncx;
+      const std::int32_t ncy = g.ncy;
       auto& out = thread_j_[t];  // (lower, higher) index pairs of own rows, flattened
       auto& foreign = thread_foreign_[t];  // those of other threads' rows
       std::size_t found = 0;
       foreign.clear();
       // The cells a disc scans: those meeting the square of half-width 2 r + skin around its
       // centre, from its coordinates (a disc near a cell's edge needs two cells, not three).
-      // A grid row's cells are contiguous in g.cell_disc, so each row is one run of discs.
+      // A grid column's cells are contiguous in g.cell_disc, so each column is one run of
+      // discs; a fine disc scans its own column from its own place on, and the columns after.
       for (std::int32_t a = lo; a < hi; ++a) {
         const double ra = p.radius[a], xa = p.x[a], ya = p.y[a];
         const bool fine = ra <= fine_limit, coarse = !fine;
         const double reach = 2 * (fine ? fine_radius : ra) + skin;
         const std::int32_t place = g.disc_place[a];
-        const std::int32_t gx0 = g.column(xa - reach), gx1 = g.column(xa + reach);
-        const std::int32_t gy_own = g.disc_cell[a] / ncx;
-        const std::int32_t gy0 = fine ? gy_own : g.row(ya - reach);
-        const std::int32_t gy1 = g.row(ya + reach);
-        for (std::int32_t gy = gy0; gy <= gy1; ++gy) {
-          std::int32_t q_begin = g.cell_start[gy * ncx + gx0];
-          if (fine && gy == gy_own) q_begin = std::max(q_begin, std::min(place + 1, g.cell_start[gy * ncx + gx1 + 1]));
-          const std::int32_t q_end = g.cell_start[gy * ncx + gx1 + 1];
+        const std::int32_t gy0 = g.row(ya - reach), gy1 = g.row(ya + reach);
+        const std::int32_t gx_own = g.disc_cell[a] / ncy;
+        const std::int32_t gx0 = fine ? gx_own : g.column(xa - reach);
+        const std::int32_t gx1 = g.column(xa + reach);
+        for (std::int32_t gx = gx0; gx <= gx1; ++gx) {
+          std::int32_t q_begin = g.cell_start[gx * ncy + gy0];
+          const std::int32_t q_end = g.cell_start[gx * ncy + gy1 + 1];
+          if (fine && gx == gx_own) q_begin = std::max(q_begin, std::min(place + 1, q_end));
           if (out.size() < found + 2 * static_cast<std::size_t>(q_end - q_begin))
             out.resize(2 * out.size() + 2 * static_cast<std::size_t>(q_end - q_begin));
           std::int32_t* __restrict next = out.data() + found;
