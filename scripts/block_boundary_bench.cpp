@@ -12,11 +12,10 @@
 // the prefetchers run on (docs/performance.md, issue 11, thirty-fifth session).
 #include <omp.h>
 
-#include <string_view>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <vector>
 
 namespace {

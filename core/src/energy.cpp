@@ -16,7 +16,7 @@ EnergyState World::energy(double reference_y) const {
   }
   // Springs of the touching contacts; the history arrays hold this step's state.
   const phases::ContactEnergy c =
-      phases::contact_energy({settings_, table_, segments_, laws_}, p, pairs_, wall_contacts_);
+      phases::contact_energy({settings_, segments_, laws_}, p, pairs_, wall_contacts_);
   e.elastic = c.elastic;
   e.committed_normal = c.committed_normal;
   return e;

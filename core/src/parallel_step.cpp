@@ -41,7 +41,7 @@ World::Verdict World::judge(const PassSums& sums, const phases::Motion& motion, 
 }
 
 std::int64_t World::forces_and_motion(bool forces, double kick, double drift, std::int64_t passes) {
-  const phases::StepContext ctx{settings_, table_, segments_, laws_};
+  const phases::StepContext ctx{settings_, segments_, laws_};
   const auto n = static_cast<std::int64_t>(particles_.size());
   const bool ledger = forces && settings_.track_energy;
   if (ledger)

@@ -19,7 +19,6 @@ inline double seconds_since(Clock::time_point t0) {
 // What a phase reads of the world, built once per call (Box2D's b2StepContext habit).
 struct StepContext {
   const StepSettings& settings;
-  const ContactTable& table;
   const std::vector<Segment>& segments;
   // The contact model's parameter tables for pairs and for walls (ContactModel::Tables of
   // settings.contact's model, derive_laws), derived once with the World: derived at every

@@ -85,7 +85,7 @@ struct ContactModel {
     std::vector<typename Rolling::Params> rolling;
   };
   static Tables tables(const std::vector<PairCoefficients>& rows) {
-    Tables t;  // built once per World (phases::derive_laws) and per energy sample
+    Tables t;  // built once per World (phases::derive_laws)
     t.normal.reserve(rows.size());
     t.tangential.reserve(rows.size());
     t.rolling.reserve(rows.size());
