@@ -24,25 +24,39 @@ namespace {
 // one after another, then side by side by as many threads that never meet ("apart"), then side
 // by side meeting after every step as the blocks of a step do ("lockstep"). They share nothing,
 // so what side by side falls short of `count` times is the host's, not runout's
-// (docs/performance.md, issue 11). Each mode starts from `world`'s state, so all three time the
+// (docs/performance.md, issue 11). Each mode starts from `world`'s state, so all of them time the
 // same stretch of the flow as the turn of `world` that follows.
+// With a halo (--ceiling-halo), a fourth mode: side by side, each copy after its step reading
+// `halo` discs' positions and velocities that the next copy's thread wrote in that step, as a
+// step's threads read the discs their rows reach in the next block (docs/performance.md, issue
+// 11 thirty-seventh session). Its two meetings a step (after the steps; after the reads, before
+// the next step writes again) keep the copies race-free; with `halo` 0 it times them alone.
 struct Ceiling {
   long long steps = 0;  // of each copy in each mode
-  double alone = 0, apart = 0, lockstep = 0;  // seconds
+  double alone = 0, apart = 0, lockstep = 0, halo = 0;  // seconds
   Ceiling& operator+=(const Ceiling& t) {
-    steps += t.steps; alone += t.alone; apart += t.apart; lockstep += t.lockstep;
+    steps += t.steps; alone += t.alone; apart += t.apart; lockstep += t.lockstep; halo += t.halo;
     return *this;
   }
 };
 
-Ceiling ceiling_turn(const World& world, int count, long long steps) {
+// The halo's discs: from the middle of the pile on, where a step's second block starts.
+double read_halo(const Particles& p, long long halo) {
+  const std::size_t lo = p.size() / 2, hi = std::min(p.size(), lo + static_cast<std::size_t>(halo));
+  double sum = 0;
+  for (std::size_t k = lo; k < hi; ++k) sum += p.x[k] + p.y[k] + p.vx[k] + p.vy[k] + p.omega[k];
+  return sum;
+}
+
+Ceiling ceiling_turn(const World& world, int count, long long steps, long long halo) {
   using Clock = std::chrono::steady_clock;
   std::vector<World> copies;
   auto fresh_copies = [&] {
     copies.assign(static_cast<std::size_t>(count), world);
     for (World& c : copies) c.set_threads(1);
   };
-  auto side_by_side = [&](bool meet) {
+  // read < 0: no halo.
+  auto side_by_side = [&](bool meet, long long read) {
     fresh_copies();
     std::exception_ptr failed;
     const auto start = Clock::now();
@@ -50,6 +64,7 @@ Ceiling ceiling_turn(const World& world, int count, long long steps) {
     {
       // A smaller team than asked (an OpenMP limit): each member takes every team-th copy.
       const int team = omp_get_num_threads(), me = omp_get_thread_num();
+      double sum = 0;
       for (long long s = 0; s < steps; ++s) {
         try {
           for (int c = me; c < count; c += team) copies[c].step();
@@ -60,7 +75,12 @@ Ceiling ceiling_turn(const World& world, int count, long long steps) {
         if (meet) {
 #pragma omp barrier
         }
+        if (read >= 0) {
+          for (int c = me; c < count; c += team) sum += read_halo(copies[(c + 1) % count].particles(), read);
+#pragma omp barrier
+        }
       }
+      [[maybe_unused]] volatile double kept = sum;  // so the reads are made
     }
     if (failed) std::rethrow_exception(failed);
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -71,8 +91,9 @@ Ceiling ceiling_turn(const World& world, int count, long long steps) {
   const auto start = Clock::now();
   for (World& c : copies) c.advance(steps);
   turn.alone = std::chrono::duration<double>(Clock::now() - start).count();
-  turn.apart = side_by_side(false);
-  turn.lockstep = side_by_side(true);
+  turn.apart = side_by_side(false, -1);
+  turn.lockstep = side_by_side(true, -1);
+  if (halo >= 0) turn.halo = side_by_side(true, halo);
   return turn;
 }
 
@@ -127,7 +148,7 @@ int bench_command(const BenchOptions& o) {
   const bool turns = o.against_threads > 0 || o.ceiling;
   while (mine.steps < o.steps) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
-    if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn);
+    if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn, o.ceiling_halo);
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
   }
@@ -170,6 +191,11 @@ int bench_command(const BenchOptions& o) {
     // The copies' steps one after another over side by side: at most `ceiling_copies`.
     std::printf("ceiling_apart_speedup: %.3f\n", ceiling.alone / ceiling.apart);
     std::printf("ceiling_lockstep_speedup: %.3f\n", ceiling.alone / ceiling.lockstep);
+    if (o.ceiling_halo >= 0) {
+      std::printf("ceiling_halo_discs: %lld\n", std::min<long long>(o.ceiling_halo, static_cast<long long>(n) - static_cast<long long>(n) / 2));
+      std::printf("ceiling_halo_seconds: %.4f\n", ceiling.halo);
+      std::printf("ceiling_halo_speedup: %.3f\n", ceiling.alone / ceiling.halo);
+    }
   }
   return 0;
 }

@@ -48,6 +48,9 @@ struct BenchOptions {
   // With --threads T: also step T copies of the pile, each at one thread by its own thread,
   // in turns alone and side by side (the host's ceiling for threads that share nothing).
   bool ceiling = false;
+  // >= 0 (--ceiling-halo): the copies also run side by side reading this many discs of each
+  // other's every step, between two meetings (bench_command.cpp, Ceiling).
+  long long ceiling_halo = -1;
   // When --threads' steps start their forces before the verdict on the step before
   // (StepSettings::Ahead, by its name in kAheadNames); --against-threads always runs with the
   // default, when_safe.

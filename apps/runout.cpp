@@ -85,6 +85,12 @@ int main(int argc, char** argv) {
       "--ceiling", bench.ceiling,
       "also time --threads copies of the pile, each stepped by its own thread at one thread, side by side against one "
       "after another: the speed-up this host gives threads that share nothing (prints ceiling_*)");
+  bench_cmd->add_option("--ceiling-halo", bench.ceiling_halo,
+                        "with --ceiling, also time the copies side by side reading this many discs' positions and "
+                        "velocities of each other's every step, between two meetings (prints ceiling_halo_*; 0 times the "
+                        "meetings alone)")
+      ->check(CLI::Range(0LL, 100000000LL))
+      ->needs(ceiling);
   bench_cmd->add_option("--ahead", bench.ahead,
                         "when_safe | always | never: when a step of several threads starts its forces before the verdict on "
                         "the step before (--against-threads keeps when_safe; no result depends on it)")

@@ -120,6 +120,12 @@ check bench_ceiling_speedup 0 'ceiling_lockstep_speedup: [0-9]+\.[0-9]{3}' -- "$
 check bench_frames_not_with_ceiling 2 'ceiling excludes --frames' -- "$bin" bench --scene "$work/two.toml" --threads 2 --frames 1 --ceiling
 check bench_frames_not_with_against 2 'against-threads excludes --frames' -- "$bin" bench --scene "$work/two.toml" --threads 2 --frames 1 --against-threads 1
 check bench_ceiling_one_thread 2 'ceiling needs --threads 2 or more' -- "$bin" bench --scene "$work/two.toml" --steps 10 --ceiling
+# --ceiling-halo: the copies read the discs from the middle of the pile on, as many as there are
+# (two discs: one past the middle), and only with --ceiling.
+check bench_ceiling_halo 0 'ceiling_halo_discs: 1$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo 5 --turn-steps 3
+check bench_ceiling_halo_speedup 0 'ceiling_halo_speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo 0
+check bench_ceiling_halo_needs_ceiling 2 'ceiling-halo requires --ceiling' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling-halo 5
+check bench_ceiling_halo_negative 2 'ceiling-halo: Value -1 not in range' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo -1
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
