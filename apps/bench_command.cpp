@@ -59,6 +59,7 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
   auto side_by_side = [&](bool meet, long long read) {
     fresh_copies();
     std::exception_ptr failed;
+    std::vector<double> sums(static_cast<std::size_t>(count));
     const auto start = Clock::now();
 #pragma omp parallel num_threads(count)
     {
@@ -80,7 +81,9 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
 #pragma omp barrier
         }
       }
-      [[maybe_unused]] volatile double kept = sum;  // so the reads are made
+      // Stored where the caller could read it, so the reads are made (a volatile local was not
+      // enough: GCC 12 dropped the reads).
+      sums[static_cast<std::size_t>(me)] = sum;
     }
     if (failed) std::rethrow_exception(failed);
     return std::chrono::duration<double>(Clock::now() - start).count();
