@@ -40,9 +40,14 @@ struct Ceiling {
   }
 };
 
-// The halo's discs: from the middle of the pile on, where a step's second block starts.
+// The halo's discs: `halo` of them from the middle of the pile on (where a step's second block
+// starts), as many as there are.
+std::size_t halo_discs(std::size_t n, long long halo) {
+  return std::min(n - n / 2, static_cast<std::size_t>(halo));
+}
+
 double read_halo(const Particles& p, long long halo) {
-  const std::size_t lo = p.size() / 2, hi = std::min(p.size(), lo + static_cast<std::size_t>(halo));
+  const std::size_t lo = p.size() / 2, hi = lo + halo_discs(p.size(), halo);
   double sum = 0;
   for (std::size_t k = lo; k < hi; ++k) sum += p.x[k] + p.y[k] + p.vx[k] + p.vy[k] + p.omega[k];
   return sum;
@@ -195,7 +200,7 @@ int bench_command(const BenchOptions& o) {
     std::printf("ceiling_apart_speedup: %.3f\n", ceiling.alone / ceiling.apart);
     std::printf("ceiling_lockstep_speedup: %.3f\n", ceiling.alone / ceiling.lockstep);
     if (o.ceiling_halo >= 0) {
-      std::printf("ceiling_halo_discs: %lld\n", std::min<long long>(o.ceiling_halo, static_cast<long long>(n) - static_cast<long long>(n) / 2));
+      std::printf("ceiling_halo_discs: %zu\n", halo_discs(world.particles().size(), o.ceiling_halo));
       std::printf("ceiling_halo_seconds: %.4f\n", ceiling.halo);
       std::printf("ceiling_halo_speedup: %.3f\n", ceiling.alone / ceiling.halo);
     }
