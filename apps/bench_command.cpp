@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -105,6 +106,31 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
   return turn;
 }
 
+// How long one cache line takes to go from the team's thread 0 to its thread 1 and back, in ns:
+// the two pass a counter to and fro `trips` times. On the 2-vCPU VMs of issue 11 it swings
+// between ~100 ns and ~450 ns as the host moves the vCPUs, and a two-thread step, which moves a
+// hundred-odd lines between its threads each pass, is ×1.9 or ×1.6 with it (docs/performance.md);
+// read beside every turn, it says which host the figures above it met. NaN when OpenMP gives
+// fewer than two threads.
+double line_round_trip_ns(long trips) {
+  alignas(64) std::atomic<long> ball{0};
+  int team = 0;
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+#pragma omp parallel num_threads(2)
+  {
+    const int me = omp_get_thread_num();
+    if (me == 0) team = omp_get_num_threads();
+    if (omp_get_num_threads() == 2)
+      for (long k = me; k < 2 * trips; k += 2) {
+        while (ball.load(std::memory_order_acquire) != k) {}
+        ball.store(k + 1, std::memory_order_release);
+      }
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return team == 2 ? seconds / static_cast<double>(trips) * 1e9 : std::nan("");
+}
+
 }  // namespace
 
 int bench_command(const BenchOptions& o) {
@@ -154,12 +180,22 @@ int bench_command(const BenchOptions& o) {
   };
   Ceiling ceiling;
   const bool turns = o.against_threads > 0 || o.ceiling;
+  // The host's line round trip before every turn and after the last (two threads or more).
+  const bool read_trips = std::max(o.threads, o.against_threads) >= 2;
+  std::vector<double> trips_ns;
+  auto read_trip = [&] {
+    if (!read_trips) return;
+    const double ns = line_round_trip_ns(2000);
+    if (!std::isnan(ns)) trips_ns.push_back(ns);
+  };
   while (mine.steps < o.steps) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
+    read_trip();
     if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn, o.ceiling_halo);
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
   }
+  read_trip();
   const double n = static_cast<double>(world.particles().size());
   const double secs = mine.seconds;
   std::printf("scene: %s\n", scene.name.c_str());
@@ -204,6 +240,14 @@ int bench_command(const BenchOptions& o) {
       std::printf("ceiling_halo_seconds: %.4f\n", ceiling.halo);
       std::printf("ceiling_halo_speedup: %.3f\n", ceiling.alone / ceiling.halo);
     }
+  }
+  if (!trips_ns.empty()) {
+    std::sort(trips_ns.begin(), trips_ns.end());
+    const std::size_t k = trips_ns.size();
+    std::printf("line_round_trip_reads: %zu\n", k);
+    std::printf("line_round_trip_ns_min: %.0f\n", trips_ns.front());
+    std::printf("line_round_trip_ns_median: %.0f\n", (trips_ns[(k - 1) / 2] + trips_ns[k / 2]) / 2);
+    std::printf("line_round_trip_ns_max: %.0f\n", trips_ns.back());
   }
   return 0;
 }

@@ -126,6 +126,16 @@ check bench_ceiling_halo 0 'ceiling_halo_discs: 1$' -- "$bin" bench --scene "$wo
 check bench_ceiling_halo_speedup 0 'ceiling_halo_speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo 0
 check bench_ceiling_halo_needs_ceiling 2 'ceiling-halo requires --ceiling' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling-halo 5
 check bench_ceiling_halo_negative 2 'ceiling-halo: Value -1 not in range' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo -1
+# bench at two threads reads the host's cache-line round trip before every turn and after the
+# last: 10 steps in turns of 3 are 4 turns, so 5 reads; min <= median <= max; none at one thread.
+check bench_round_trip_reads 0 'line_round_trip_reads: 5$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
+trips=$("$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 2>/dev/null | sed -n 's/^line_round_trip_ns_\(min\|median\|max\): //p' | tr '\n' ' ')
+if ! awk -v t="$trips" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[1] <= v[2] && v[2] <= v[3]) }'; then
+  echo "FAIL bench_round_trip_order: min, median, max = '$trips'"; fail=$((fail + 1))
+else pass=$((pass + 1)); fi
+if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | grep -q line_round_trip; then
+  echo "FAIL bench_round_trip_one_thread: printed at one thread"; fail=$((fail + 1))
+else pass=$((pass + 1)); fi
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
