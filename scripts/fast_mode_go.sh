@@ -25,7 +25,7 @@ while [ "$(date +%s)" -lt "$deadline" ]; do
       echo "== bench --threads 2 --against-threads 1 --steps 20000 (round trip $(trip) ns)"
       "$B" bench --threads 2 --against-threads 1 --steps 20000 2>/dev/null | grep -E '^(particle_steps|against_particle|speedup)'
       echo "== thread_scaling 9 20000 (round trip $(trip) ns)"
-      ROUND_TRIP=$RT "$here/thread_scaling.sh" "$B" 9 20000
+      "$here/thread_scaling.sh" "$B" 9 20000
       echo "== bench --threads 2 --against-threads 1 --ceiling --steps 20000 (round trip $(trip) ns)"
       "$B" bench --threads 2 --against-threads 1 --ceiling --steps 20000 2>/dev/null | grep -E '^(speedup|ceiling_.*speedup)'
       echo "== end $(date -u +%H:%M:%S), round trip $(trip) ns"

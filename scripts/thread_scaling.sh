@@ -2,21 +2,18 @@
 # One thread against two on the bench pile, alternating so the machine's drift hits both alike.
 # Usage: scripts/thread_scaling.sh BIN [ROUNDS=5] [STEPS=40000] [extra bench options...]
 # Prints each round's pair and the medians; the last line is "two/one: R" (ratio of medians).
-# With ROUND_TRIP set to a built scripts/line_round_trip.cpp, each round also shows the host's
-# cache-line round trip between the two CPUs, measured before and after it (its fast and slow
-# modes: docs/performance.md, issue 11 sixteenth session).
+# Each round also shows the host's cache-line round trip between two threads, as the two-thread
+# bench read it (median of its reads; its fast and slow modes: docs/performance.md, issue 11).
 set -euo pipefail
 B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
-rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null | sed -n 's/^particle_steps_per_second: *//p'; }
-trip() { [ -n "${ROUND_TRIP:-}" ] && "$ROUND_TRIP" | sed -n 's/^round trip: //p'; }
+out=$(mktemp); trap 'rm -f "$out"' EXIT
+rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null >"$out"; sed -n 's/^particle_steps_per_second: *//p' "$out"; }
 one=(); two=()
 for i in $(seq "$R"); do
-  before=$(trip || true)
   a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")
-  after=$(trip || true)
-  printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s' "$i" "$a" "$b"
-  if [ -n "${ROUND_TRIP:-}" ]; then printf ', two/one %.2f, line round trip %s / %s' "$(/usr/bin/python3 -c "print($b/$a)")" "$before" "$after"; fi
-  echo
+  trip=$(sed -n 's/^line_round_trip_ns_median: *//p' "$out")
+  printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s, two/one %.2f, line round trip %s ns\n' \
+    "$i" "$a" "$b" "$(/usr/bin/python3 -c "print($b/$a)")" "${trip:-?}"
 done
 /usr/bin/python3 -c "
 import statistics as s
