@@ -23,11 +23,11 @@ while [ "$(date +%s)" -lt "$deadline" ]; do
     {
       echo "== start $(date -u +%H:%M:%S), round trip $t ns"
       echo "== bench --threads 2 --against-threads 1 --steps 20000 (round trip $(trip) ns)"
-      "$B" bench --threads 2 --against-threads 1 --steps 20000 2>/dev/null | grep -E '^(particle_steps|against_particle|speedup)'
+      "$B" bench --threads 2 --against-threads 1 --steps 20000 2>/dev/null | grep -E '^(particle_steps|against_particle|speedup|line_round_trip_ns)'
       echo "== thread_scaling 9 20000 (round trip $(trip) ns)"
       "$here/thread_scaling.sh" "$B" 9 20000
       echo "== bench --threads 2 --against-threads 1 --ceiling --steps 20000 (round trip $(trip) ns)"
-      "$B" bench --threads 2 --against-threads 1 --ceiling --steps 20000 2>/dev/null | grep -E '^(speedup|ceiling_.*speedup)'
+      "$B" bench --threads 2 --against-threads 1 --ceiling --steps 20000 2>/dev/null | grep -E '^(speedup|ceiling_.*speedup|line_round_trip_ns)'
       echo "== end $(date -u +%H:%M:%S), round trip $(trip) ns"
     } > "$OUT/go_$n.txt.part"
     mv "$OUT/go_$n.txt.part" "$OUT/go_$n.txt"
