@@ -8,12 +8,14 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "pictures.hpp"
 #include "prepare.hpp"
 #include "run_command.hpp"
+#include "runout/io/files.hpp"
 #include "runout/io/scene_file.hpp"
 #include "runout/setup.hpp"
 
@@ -180,22 +182,41 @@ int bench_command(const BenchOptions& o) {
   };
   Ceiling ceiling;
   const bool turns = o.against_threads > 0 || o.ceiling;
-  // The host's line round trip before every turn and after the last (two threads or more).
+  // The host's line round trip before every turn and after the last (two threads or more; NaN
+  // where not read).
   const bool read_trips = std::max(o.threads, o.against_threads) >= 2;
   std::vector<double> trips_ns;
   auto read_trip = [&] {
-    if (!read_trips) return;
-    const double ns = line_round_trip_ns(2000);
-    if (!std::isnan(ns)) trips_ns.push_back(ns);
+    const double ns = read_trips ? line_round_trip_ns(2000) : std::nan("");
+    trips_ns.push_back(ns);
+    return ns;
   };
-  while (mine.steps < o.steps) {
+  // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn.
+  std::ostringstream turn_log;
+  turn_log << "turn,steps,threads,seconds,against_threads,against_seconds,speedup,"
+              "line_round_trip_ns_before,line_round_trip_ns_after\n";
+  auto csv = [](const char* format, double v) {
+    char text[32] = "";
+    if (!std::isnan(v)) std::snprintf(text, sizeof text, format, v);
+    return std::string(text);
+  };
+  double before = read_trip();
+  for (long long k = 0; mine.steps < o.steps; ++k) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
-    read_trip();
     if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn, o.ceiling_halo);
+    const double mine_before = mine.seconds, other_before = other.seconds;
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
+    const double after = read_trip();
+    const double t_mine = mine.seconds - mine_before, t_other = other.seconds - other_before;
+    turn_log << k << ',' << turn << ',' << mine.threads << ',' << csv("%.9g", t_mine) << ',' << other.threads << ','
+             << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ',' << csv("%.0f", before) << ','
+             << csv("%.0f", after) << '\n';
+    before = after;
   }
-  read_trip();
+  if (!o.turn_log.empty()) io::write_file_atomically(o.turn_log, turn_log.str());
+  trips_ns.erase(std::remove_if(trips_ns.begin(), trips_ns.end(), [](double v) { return std::isnan(v); }),
+                 trips_ns.end());
   const double n = static_cast<double>(world.particles().size());
   const double secs = mine.seconds;
   std::printf("scene: %s\n", scene.name.c_str());

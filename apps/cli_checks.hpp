@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace runout::app {
@@ -34,6 +35,19 @@ inline CLI::Validator real_in(double lo, double hi) {
         return {};
       },
       "REAL in " + allowed, "real_in");
+}
+
+// A file to be written: its folder exists and the path is not a folder itself, checked before
+// any work starts so a long run cannot end unable to write what it measured.
+inline CLI::Validator file_to_write() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+        if (!parent.empty() && !std::filesystem::is_directory(parent)) return "folder " + parent.string() + " does not exist";
+        if (std::filesystem::is_directory(path)) return path + " is a folder";
+        return {};
+      },
+      "FILE", "file_to_write");
 }
 
 }  // namespace runout::app

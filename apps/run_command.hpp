@@ -56,6 +56,9 @@ struct BenchOptions {
   // default, when_safe.
   std::string ahead = "when_safe";
   long long turn_steps = 1000;
+  // Non-empty (--turn-log, with --against-threads): each turn's seconds at both counts and the
+  // line round trips read around it, as CSV.
+  std::string turn_log;
   std::string cache_dir;
   std::vector<std::string> overrides;
   long long frames = 0;  // > 0: time this many frames of drawing, PNG and video instead

@@ -98,6 +98,11 @@ int main(int argc, char** argv) {
   auto* turns = bench_cmd->add_option("--turn-steps", bench.turn_steps,
                                       "steps of one turn with --against-threads or --ceiling (default 1000)")
                     ->check(CLI::Range(1LL, 100000000LL));
+  bench_cmd->add_option("--turn-log", bench.turn_log,
+                        "with --against-threads, write each turn's seconds at both thread counts and the host's line "
+                        "round trip before and after it to this CSV file")
+      ->check(runout::app::file_to_write())
+      ->needs(against);
   bench_cmd->callback([&bench, turns, against, ceiling] {
     if (turns->count() > 0 && against->count() == 0 && ceiling->count() == 0)
       throw CLI::ValidationError("--turn-steps requires --against-threads or --ceiling");

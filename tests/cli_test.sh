@@ -136,6 +136,23 @@ else pass=$((pass + 1)); fi
 if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | grep -q line_round_trip; then
   echo "FAIL bench_round_trip_one_thread: printed at one thread"; fail=$((fail + 1))
 else pass=$((pass + 1)); fi
+# --turn-log: a CSV row per turn (10 steps in turns of 3: 3, 3, 3, 1), read back with Python's csv
+# module: the steps add up to --steps, each speed-up is its turn's seconds' ratio, and each turn's
+# round trip after is the next turn's before. A missing folder is refused before any work.
+check bench_turn_log 0 'speedup: ' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3 --turn-log "$work/turns.csv"
+/usr/bin/python3 - "$work/turns.csv" <<'PY' || { echo "FAIL bench_turn_log_rows"; fail=$((fail + 1)); }
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [int(r["steps"]) for r in rows] == [3, 3, 3, 1], rows
+assert all(r["threads"] == "2" and r["against_threads"] == "1" for r in rows)
+for r in rows:
+    s, a = float(r["seconds"]), float(r["against_seconds"])
+    assert s > 0 and a > 0 and abs(float(r["speedup"]) - a / s) <= 1e-4 * a / s + 6e-5, r
+    assert float(r["line_round_trip_ns_before"]) > 0 and float(r["line_round_trip_ns_after"]) > 0
+assert all(rows[k]["line_round_trip_ns_after"] == rows[k + 1]["line_round_trip_ns_before"] for k in range(len(rows) - 1))
+PY
+check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-log "$work/nowhere/turns.csv"
+check bench_turn_log_needs_against 2 'turn-log requires --against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --turn-log "$work/t.csv"
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
