@@ -1,0 +1,100 @@
+#!/usr/bin/python3
+"""The speed-up of each turn of `runout bench --against-threads M --turn-log FILE` against the
+host's cache-line round trip read around it (docs/performance.md, issue 11).
+
+On VMs whose vCPUs the host moves, the round trip between two threads swings between a fast and
+a slow state, and a two-thread step's speed-up with it. This reads one or more turn logs, prints
+the median speed-up of the turns whose round trips before and after both lie under --fast-below
+ns, of those whose both lie over --slow-above ns, and of the rest, and with --out draws every turn.
+
+  /usr/bin/python3 scripts/turn_log_plot.py turns_*.csv [--out FIG.png] [--fast-below 250] [--slow-above 400]
+"""
+import argparse
+import csv
+import statistics
+import sys
+
+
+def read_turns(paths):
+    turns = []
+    for path in paths:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                if not row["line_round_trip_ns_before"] or not row["line_round_trip_ns_after"]:
+                    sys.exit(f"{path}: turn {row['turn']} has no round trip (a one-thread run?)")
+                steps = float(row["steps"]) / 1000
+                turns.append((float(row["line_round_trip_ns_before"]), float(row["line_round_trip_ns_after"]),
+                              float(row["speedup"]), float(row["seconds"]) / steps * 1e3,
+                              float(row["against_seconds"]) / steps * 1e3))
+    return turns
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("logs", nargs="+", help="CSV files written by runout bench --turn-log")
+    ap.add_argument("--out", help="draw the turns to this PNG, PDF or SVG")
+    ap.add_argument("--fast-below", type=float, default=250, help="ns (default 250)")
+    ap.add_argument("--slow-above", type=float, default=400, help="ns (default 400)")
+    ap.add_argument("--target", type=float, default=1.85, help="speed-up line to draw (default 1.85)")
+    a = ap.parse_args()
+    if not a.fast_below < a.slow_above:
+        sys.exit("--fast-below must be under --slow-above")
+    turns = read_turns(a.logs)
+    if not turns:
+        sys.exit("no turns in " + ", ".join(a.logs))
+    fast, slow = f"fast (both < {a.fast_below:g} ns)", f"slow (both > {a.slow_above:g} ns)"
+    classes = {fast: [], slow: [], "between": []}
+    for t in turns:
+        classes[fast if max(t[0], t[1]) < a.fast_below else slow if min(t[0], t[1]) > a.slow_above else "between"].append(t)
+    print(f"turns: {len(turns)}")
+    for name, ts in classes.items():
+        if ts:
+            s = [t[2] for t in ts]
+            print(f"{name}: {len(ts)} turns, speed-up median {statistics.median(s):.3f}, "
+                  f"quartiles {statistics.quantiles(s, n=4)[0]:.3f}–{statistics.quantiles(s, n=4)[2]:.3f}"
+                  if len(s) > 1 else f"{name}: 1 turn, speed-up {s[0]:.3f}")
+        else:
+            print(f"{name}: 0 turns")
+    if a.out:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8), dpi=150)
+        colours = dict(zip(classes, ["tab:blue", "tab:red", "tab:gray"]))
+        for name, ts in classes.items():
+            if ts:
+                ax.scatter([max(t[0], t[1]) for t in ts], [t[2] for t in ts], s=9, alpha=0.5, color=colours[name],
+                           label=f"{name}: {len(ts)} turns, median {statistics.median(t[2] for t in ts):.2f}")
+                bx.scatter([t[4] for t in ts], [t[3] for t in ts], s=9, alpha=0.5, color=colours[name], label=name)
+        ax.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
+        ax.set_xscale("log")
+        ax.set_xlabel("line round trip, the larger of before and after the turn (ns)")
+        ax.set_ylabel("turn's speed-up (seconds at M threads / at N)")
+        ax.set_title("Speed-up of each turn against the host's round trip", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="lower left")
+        # Right: each turn's two sides, so a speed-up lifted by a slow M-thread side shows as such.
+        xs, ys = [t[4] for t in turns], [t[3] for t in turns]
+        # The middle 99 % of turns: a turn the host stopped for seconds would squash the rest.
+        def span(v):
+            q = statistics.quantiles(v, n=200) if len(v) > 1 else [v[0], v[0]]
+            return q[0] * 0.97, q[-1] * 1.03
+        (xlo, xhi), (ylo, yhi) = span(xs), span(ys)
+        for ratio, style in ((a.target, "--"), (2.0, "-.")):
+            bx.plot([xlo, xhi], [xlo / ratio, xhi / ratio], color="black", lw=0.8, ls=style, label=f"speed-up ×{ratio:g}")
+        bx.set_xlim(xlo, xhi)
+        bx.set_ylim(ylo, yhi)
+        bx.set_xlabel("ms per 1,000 steps at M threads (--against-threads)")
+        bx.set_ylabel("ms per 1,000 steps at N threads (--threads)")
+        bx.set_title("Each turn's two sides", fontsize=10)
+        bx.grid(True, which="both", alpha=0.3)
+        bx.legend(fontsize=7, loc="upper left")
+        fig.suptitle("runout bench --turn-log: " + ", ".join(a.logs) if len(a.logs) < 3 else
+                     f"runout bench --turn-log: {len(a.logs)} runs, {len(turns)} turns", fontsize=11)
+        fig.tight_layout()
+        fig.savefig(a.out)
+        print(f"drawn: {a.out}")
+
+
+if __name__ == "__main__":
+    main()
