@@ -151,6 +151,16 @@ for r in rows:
     assert float(r["line_round_trip_ns_before"]) > 0 and float(r["line_round_trip_ns_after"]) > 0
 assert all(rows[k]["line_round_trip_ns_after"] == rows[k + 1]["line_round_trip_ns_before"] for k in range(len(rows) - 1))
 PY
+# scripts/turn_log_plot.py on turns made up here: three fast ones (1.7, 1.8, 1.9: median 1.8),
+# two slow ones (1.5, 1.6), one between; and it draws the bench's own log as a PNG.
+printf 'turn,steps,threads,seconds,against_threads,against_seconds,speedup,line_round_trip_ns_before,line_round_trip_ns_after\n' >"$work/made.csv"
+for row in "10 17 100 120" "10 18 120 110" "10 19 130 140" "10 15 500 600" "10 16 600 450" "10 20 200 500"; do
+  set -- $row; printf '0,1000,2,%s,1,%s,%s,%s,%s\n' "$1" "$2" "$(awk -v a="$2" -v b="$1" 'BEGIN{print a/b}')" "$3" "$4" >>"$work/made.csv"
+done
+check turn_log_plot_fast 0 'fast \(both < 250 ns\): 3 turns, speed-up median 1\.800' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
+check turn_log_plot_slow 0 'slow \(both > 400 ns\): 2 turns, speed-up median 1\.550' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
+check turn_log_plot_draws 0 'drawn: ' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/turns.csv" --out "$work/turns.png"
+/usr/bin/python3 -c "import sys; sys.exit(open(sys.argv[1], 'rb').read(8) != b'\x89PNG\r\n\x1a\n')" "$work/turns.png" || { echo "FAIL turn_log_plot_png"; fail=$((fail + 1)); }
 check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-log "$work/nowhere/turns.csv"
 check bench_turn_log_needs_against 2 'turn-log requires --against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --turn-log "$work/t.csv"
 
