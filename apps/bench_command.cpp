@@ -111,9 +111,9 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
 // How long one cache line takes to go from the team's thread 0 to its thread 1 and back, in ns:
 // the two pass a counter to and fro `trips` times. On the 2-vCPU VMs of issue 11 it swings
 // between ~100 ns and ~450 ns as the host moves the vCPUs, and a two-thread step, which moves a
-// hundred-odd lines between its threads each pass, is ×1.9 or ×1.6 with it (docs/performance.md);
-// read beside every turn, it says which host the figures above it met. NaN when OpenMP gives
-// fewer than two threads.
+// hundred-odd lines between its threads each pass, reaches ×1.85 only while it is short
+// (docs/performance.md). Read beside every turn, it says which state of the host the figures
+// met. NaN when OpenMP gives fewer than two threads.
 double line_round_trip_ns(long trips) {
   alignas(64) std::atomic<long> ball{0};
   int team = 0;
