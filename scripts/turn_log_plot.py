@@ -69,6 +69,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        import matplotlib.ticker
         fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8), dpi=150)
         colours = dict(zip(classes, ["tab:blue", "tab:red", "tab:gray"]))
         for name, ts in classes.items():
@@ -78,6 +79,9 @@ def main():
                 bx.scatter([t[4] for t in ts], [t[3] for t in ts], s=9, alpha=0.5, color=colours[name], label=name)
         ax.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
         ax.set_xscale("log")
+        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.StrMethodFormatter("{x:,.0f}"))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("line round trip, the larger of before and after the turn (ns)")
         ax.set_ylabel("turn's speed-up (seconds at M threads / at N)")
         ax.set_title("Speed-up of each turn against the host's round trip", fontsize=10)
@@ -96,7 +100,7 @@ def main():
         bx.set_ylim(ylo, yhi)
         bx.set_xlabel("ms per 1,000 steps at M threads (--against-threads)")
         bx.set_ylabel("ms per 1,000 steps at N threads (--threads)")
-        bx.set_title("Each turn's two sides", fontsize=10)
+        bx.set_title("Each turn's two sides (below a line: faster than its speed-up)", fontsize=10)
         bx.grid(True, which="both", alpha=0.3)
         bx.legend(fontsize=7, loc="upper left")
         fig.suptitle("runout bench --turn-log: " + ", ".join(a.logs) if len(a.logs) < 3 else
