@@ -191,10 +191,12 @@ int bench_command(const BenchOptions& o) {
     trips_ns.push_back(ns);
     return ns;
   };
-  // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn.
+  // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn
+  // and, with --ceiling, against what the host gave copies that share nothing in that turn.
   std::ostringstream turn_log;
   turn_log << "turn,steps,threads,seconds,against_threads,against_seconds,speedup,"
-              "line_round_trip_ns_before,line_round_trip_ns_after\n";
+              "line_round_trip_ns_before,line_round_trip_ns_after,"
+              "ceiling_alone_seconds,ceiling_lockstep_seconds,ceiling_lockstep_speedup\n";
   auto csv = [](const char* format, double v) {
     char text[32] = "";
     if (!std::isnan(v)) std::snprintf(text, sizeof text, format, v);
@@ -203,7 +205,9 @@ int bench_command(const BenchOptions& o) {
   double before = read_trip();
   for (long long k = 0; mine.steps < o.steps; ++k) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
-    if (o.ceiling) ceiling += ceiling_turn(world, o.threads, turn, o.ceiling_halo);
+    const Ceiling copies = o.ceiling ? ceiling_turn(world, o.threads, turn, o.ceiling_halo) : Ceiling{};
+    ceiling += copies;
+    const double nan = std::nan("");
     const double mine_before = mine.seconds, other_before = other.seconds;
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
@@ -211,7 +215,9 @@ int bench_command(const BenchOptions& o) {
     const double t_mine = mine.seconds - mine_before, t_other = other.seconds - other_before;
     turn_log << k << ',' << turn << ',' << mine.threads << ',' << csv("%.9g", t_mine) << ',' << other.threads << ','
              << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ',' << csv("%.0f", before) << ','
-             << csv("%.0f", after) << '\n';
+             << csv("%.0f", after) << ',' << csv("%.9g", o.ceiling ? copies.alone : nan) << ','
+             << csv("%.9g", o.ceiling ? copies.lockstep : nan) << ','
+             << csv("%.4f", o.ceiling ? copies.alone / copies.lockstep : nan) << '\n';
     before = after;
   }
   if (!o.turn_log.empty()) io::write_file_atomically(o.turn_log, turn_log.str());

@@ -99,8 +99,9 @@ int main(int argc, char** argv) {
                                       "steps of one turn with --against-threads or --ceiling (default 1000)")
                     ->check(CLI::Range(1LL, 100000000LL));
   bench_cmd->add_option("--turn-log", bench.turn_log,
-                        "with --against-threads, write each turn's seconds at both thread counts and the host's line "
-                        "round trip before and after it to this CSV file")
+                        "with --against-threads, write each turn's seconds at both thread counts, the host's line "
+                        "round trip before and after it and, with --ceiling, the copies' seconds alone and in lockstep "
+                        "to this CSV file")
       ->check(runout::app::file_to_write())
       ->needs(against);
   bench_cmd->callback([&bench, turns, against, ceiling] {

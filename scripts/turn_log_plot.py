@@ -11,6 +11,7 @@ ns, of those whose both lie over --slow-above ns, and of the rest, and with --ou
 """
 import argparse
 import csv
+import math
 import statistics
 import sys
 
@@ -23,9 +24,10 @@ def read_turns(paths):
                 if not row["line_round_trip_ns_before"] or not row["line_round_trip_ns_after"]:
                     sys.exit(f"{path}: turn {row['turn']} has no round trip (a one-thread run?)")
                 steps = float(row["steps"]) / 1000
+                lockstep = row.get("ceiling_lockstep_speedup") or "nan"  # with bench --ceiling only
                 turns.append((float(row["line_round_trip_ns_before"]), float(row["line_round_trip_ns_after"]),
                               float(row["speedup"]), float(row["seconds"]) / steps * 1e3,
-                              float(row["against_seconds"]) / steps * 1e3))
+                              float(row["against_seconds"]) / steps * 1e3, float(lockstep)))
     return turns
 
 
@@ -56,8 +58,10 @@ def main():
         if len(s) < 2:
             return f"{len(s)} turn(s)" + (f", speed-up {s[0]:.3f}" if s else "")
         q = statistics.quantiles(s, n=4)
+        copies = [t[5] for t in ts if not math.isnan(t[5])]
         return (f"{len(s)} turns, speed-up median {statistics.median(s):.3f}, quartiles {q[0]:.3f}–{q[2]:.3f}, "
-                f"{sum(v >= a.target for v in s) / len(s):.0%} ≥ {a.target:g}")
+                f"{sum(v >= a.target for v in s) / len(s):.0%} ≥ {a.target:g}"
+                + (f"; copies in lockstep median {statistics.median(copies):.3f}" if copies else ""))
 
     print(f"turns: {len(turns)}")
     for name, ts in classes.items():

@@ -150,6 +150,17 @@ for r in rows:
     assert s > 0 and a > 0 and abs(float(r["speedup"]) - a / s) <= 1e-4 * a / s + 6e-5, r
     assert float(r["line_round_trip_ns_before"]) > 0 and float(r["line_round_trip_ns_after"]) > 0
 assert all(rows[k]["line_round_trip_ns_after"] == rows[k + 1]["line_round_trip_ns_before"] for k in range(len(rows) - 1))
+assert all(r["ceiling_alone_seconds"] == r["ceiling_lockstep_seconds"] == r["ceiling_lockstep_speedup"] == "" for r in rows)
+PY
+# With --ceiling the log also holds each turn's copies: alone over lockstep is the printed ratio.
+check bench_turn_log_ceiling 0 'ceiling_lockstep_speedup: ' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --ceiling --turn-steps 5 --turn-log "$work/turns_ceiling.csv"
+/usr/bin/python3 - "$work/turns_ceiling.csv" <<'PY' || { echo "FAIL bench_turn_log_ceiling_rows"; fail=$((fail + 1)); }
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [int(r["steps"]) for r in rows] == [5, 5], rows
+for r in rows:
+    alone, lockstep = float(r["ceiling_alone_seconds"]), float(r["ceiling_lockstep_seconds"])
+    assert alone > 0 and lockstep > 0 and abs(float(r["ceiling_lockstep_speedup"]) - alone / lockstep) <= 1e-4 * alone / lockstep + 6e-5, r
 PY
 # scripts/turn_log_plot.py on turns made up here: three fast ones (1.7, 1.8, 1.9: median 1.8),
 # two slow ones (1.5, 1.6), one between; and it draws the bench's own log as a PNG.
