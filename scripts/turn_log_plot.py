@@ -14,20 +14,33 @@ import csv
 import math
 import statistics
 import sys
+from typing import NamedTuple
+
+
+class Turn(NamedTuple):
+    trip_before: float  # ns
+    trip_after: float  # ns
+    speedup: float  # seconds at M threads over seconds at N
+    ms_n: float  # ms per 1,000 steps at N threads (--threads)
+    ms_m: float  # ms per 1,000 steps at M threads (--against-threads)
+    lockstep: float  # copies alone over in lockstep; NaN without bench --ceiling
 
 
 def read_turns(paths):
     turns = []
     for path in paths:
         with open(path, newline="") as f:
-            for row in csv.DictReader(f):
-                if not row["line_round_trip_ns_before"] or not row["line_round_trip_ns_after"]:
-                    sys.exit(f"{path}: turn {row['turn']} has no round trip (a one-thread run?)")
-                steps = float(row["steps"]) / 1000
-                lockstep = row.get("ceiling_lockstep_speedup") or "nan"  # with bench --ceiling only
-                turns.append((float(row["line_round_trip_ns_before"]), float(row["line_round_trip_ns_after"]),
-                              float(row["speedup"]), float(row["seconds"]) / steps * 1e3,
-                              float(row["against_seconds"]) / steps * 1e3, float(lockstep)))
+            for line, row in enumerate(csv.DictReader(f), start=2):
+                try:
+                    if not row["line_round_trip_ns_before"] or not row["line_round_trip_ns_after"]:
+                        sys.exit(f"{path}:{line}: no round trip (a run at one thread?)")
+                    thousands = float(row["steps"]) / 1000
+                    turns.append(Turn(float(row["line_round_trip_ns_before"]), float(row["line_round_trip_ns_after"]),
+                                      float(row["speedup"]), float(row["seconds"]) / thousands * 1e3,
+                                      float(row["against_seconds"]) / thousands * 1e3,
+                                      float(row.get("ceiling_lockstep_speedup") or "nan")))
+                except (KeyError, TypeError, ValueError, ZeroDivisionError) as e:
+                    sys.exit(f"{path}:{line}: not a row of runout bench --turn-log ({type(e).__name__}: {e})")
     return turns
 
 
@@ -47,18 +60,19 @@ def main():
     fast, slow = f"fast (both < {a.fast_below:g} ns)", f"slow (both > {a.slow_above:g} ns)"
     classes = {fast: [], slow: [], "between": []}
     for t in turns:
-        classes[fast if max(t[0], t[1]) < a.fast_below else slow if min(t[0], t[1]) > a.slow_above else "between"].append(t)
+        trips = (t.trip_before, t.trip_after)
+        classes[fast if max(trips) < a.fast_below else slow if min(trips) > a.slow_above else "between"].append(t)
     # A turn whose M-thread side the host slowed has a speed-up lifted by it, not earned: the
     # same medians again over the turns whose M-thread side ran at full speed.
-    m_side = [t[4] for t in turns]
+    m_side = [t.ms_m for t in turns]
     full = 1.1 * (statistics.quantiles(m_side, n=10)[0] if len(m_side) > 1 else m_side[0])
 
     def summary(ts):
-        s = [t[2] for t in ts]
+        s = [t.speedup for t in ts]
         if len(s) < 2:
             return f"{len(s)} turn(s)" + (f", speed-up {s[0]:.3f}" if s else "")
         q = statistics.quantiles(s, n=4)
-        copies = [t[5] for t in ts if not math.isnan(t[5])]
+        copies = [t.lockstep for t in ts if not math.isnan(t.lockstep)]
         return (f"{len(s)} turns, speed-up median {statistics.median(s):.3f}, quartiles {q[0]:.3f}–{q[2]:.3f}, "
                 f"{sum(v >= a.target for v in s) / len(s):.0%} ≥ {a.target:g}"
                 + (f"; copies in lockstep median {statistics.median(copies):.3f}" if copies else ""))
@@ -68,7 +82,7 @@ def main():
         print(f"{name}: {summary(ts)}")
     print(f"with the M-thread side at full speed (at most {full:.1f} ms per 1,000 steps: 1.1 × its 10th percentile):")
     for name, ts in classes.items():
-        print(f"  {name}: {summary([t for t in ts if t[4] <= full])}")
+        print(f"  {name}: {summary([t for t in ts if t.ms_m <= full])}")
     if a.out:
         import matplotlib
         matplotlib.use("Agg")
@@ -78,12 +92,14 @@ def main():
         colours = dict(zip(classes, ["tab:blue", "tab:red", "tab:gray"]))
         for name, ts in classes.items():
             if ts:
-                ax.scatter([max(t[0], t[1]) for t in ts], [t[2] for t in ts], s=9, alpha=0.5, color=colours[name],
-                           label=f"{name}: {len(ts)} turns, median {statistics.median(t[2] for t in ts):.2f}")
-                bx.scatter([t[4] for t in ts], [t[3] for t in ts], s=9, alpha=0.5, color=colours[name], label=name)
+                ax.scatter([max(t.trip_before, t.trip_after) for t in ts], [t.speedup for t in ts], s=9, alpha=0.5, color=colours[name],
+                           label=f"{name}: {len(ts)} turns, median {statistics.median(t.speedup for t in ts):.2f}")
+                bx.scatter([t.ms_m for t in ts], [t.ms_n for t in ts], s=9, alpha=0.5, color=colours[name], label=name)
         ax.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
         ax.set_xscale("log")
-        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
+        trips = [max(t.trip_before, t.trip_after) for t in turns]
+        wide = math.log10(max(trips) / min(trips)) > 2  # a host stall of a millisecond stretches the axis
+        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1,) if wide else (1, 2, 5)))
         ax.xaxis.set_major_formatter(matplotlib.ticker.StrMethodFormatter("{x:,.0f}"))
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("line round trip, the larger of before and after the turn (ns)")
@@ -92,7 +108,7 @@ def main():
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="lower left")
         # Right: each turn's two sides, so a speed-up lifted by a slow M-thread side shows as such.
-        xs, ys = [t[4] for t in turns], [t[3] for t in turns]
+        xs, ys = [t.ms_m for t in turns], [t.ms_n for t in turns]
         # The middle 99 % of turns: a turn the host stopped for seconds would squash the rest.
         def span(v):
             q = statistics.quantiles(v, n=200) if len(v) > 1 else [v[0], v[0]]

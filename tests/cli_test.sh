@@ -170,6 +170,8 @@ for row in "10 17 100 120" "10 18 120 110" "10 19 130 140" "10 15 500 600" "10 1
 done
 check turn_log_plot_fast 0 'fast \(both < 250 ns\): 3 turns, speed-up median 1\.800' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
 check turn_log_plot_slow 0 'slow \(both > 400 ns\): 2 turns, speed-up median 1\.550' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
+printf 'a,b\n1,2\n' >"$work/not_a_log.csv"
+check turn_log_plot_bad_file 1 'not_a_log.csv:2: not a row of runout bench --turn-log' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/not_a_log.csv"
 check turn_log_plot_draws 0 'drawn: ' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/turns.csv" --out "$work/turns.png"
 /usr/bin/python3 -c "import sys; sys.exit(open(sys.argv[1], 'rb').read(8) != b'\x89PNG\r\n\x1a\n')" "$work/turns.png" || { echo "FAIL turn_log_plot_png"; fail=$((fail + 1)); }
 check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-log "$work/nowhere/turns.csv"
