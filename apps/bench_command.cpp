@@ -183,12 +183,13 @@ int bench_command(const BenchOptions& o) {
   Ceiling ceiling;
   const bool turns = o.against_threads > 0 || o.ceiling;
   // The host's line round trip before every turn and after the last (two threads or more; NaN
-  // where not read).
+  // where not read, and then not kept).
+  const double nan = std::nan("");
   const bool read_trips = std::max(o.threads, o.against_threads) >= 2;
   std::vector<double> trips_ns;
   auto read_trip = [&] {
-    const double ns = read_trips ? line_round_trip_ns(2000) : std::nan("");
-    trips_ns.push_back(ns);
+    const double ns = read_trips ? line_round_trip_ns(2000) : nan;
+    if (!std::isnan(ns)) trips_ns.push_back(ns);
     return ns;
   };
   // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn
@@ -207,7 +208,6 @@ int bench_command(const BenchOptions& o) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
     const Ceiling copies = o.ceiling ? ceiling_turn(world, o.threads, turn, o.ceiling_halo) : Ceiling{};
     ceiling += copies;
-    const double nan = std::nan("");
     const double mine_before = mine.seconds, other_before = other.seconds;
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
@@ -221,8 +221,6 @@ int bench_command(const BenchOptions& o) {
     before = after;
   }
   if (!o.turn_log.empty()) io::write_file_atomically(o.turn_log, turn_log.str());
-  trips_ns.erase(std::remove_if(trips_ns.begin(), trips_ns.end(), [](double v) { return std::isnan(v); }),
-                 trips_ns.end());
   const double n = static_cast<double>(world.particles().size());
   const double secs = mine.seconds;
   std::printf("scene: %s\n", scene.name.c_str());

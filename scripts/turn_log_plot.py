@@ -25,6 +25,10 @@ class Turn(NamedTuple):
     ms_m: float  # ms per 1,000 steps at M threads (--against-threads)
     lockstep: float  # copies alone over in lockstep; NaN without bench --ceiling
 
+    @property
+    def trip(self):  # the larger round trip around the turn: what the drawing's x is
+        return max(self.trip_before, self.trip_after)
+
 
 def read_turns(paths):
     turns = []
@@ -60,8 +64,8 @@ def main():
     fast, slow = f"fast (both < {a.fast_below:g} ns)", f"slow (both > {a.slow_above:g} ns)"
     classes = {fast: [], slow: [], "between": []}
     for t in turns:
-        trips = (t.trip_before, t.trip_after)
-        classes[fast if max(trips) < a.fast_below else slow if min(trips) > a.slow_above else "between"].append(t)
+        slower = min(t.trip_before, t.trip_after) > a.slow_above
+        classes[fast if t.trip < a.fast_below else slow if slower else "between"].append(t)
     # A turn whose M-thread side the host slowed has a speed-up lifted by it, not earned: the
     # same medians again over the turns whose M-thread side ran at full speed.
     m_side = [t.ms_m for t in turns]
@@ -92,12 +96,12 @@ def main():
         colours = dict(zip(classes, ["tab:blue", "tab:red", "tab:gray"]))
         for name, ts in classes.items():
             if ts:
-                ax.scatter([max(t.trip_before, t.trip_after) for t in ts], [t.speedup for t in ts], s=9, alpha=0.5, color=colours[name],
+                ax.scatter([t.trip for t in ts], [t.speedup for t in ts], s=9, alpha=0.5, color=colours[name],
                            label=f"{name}: {len(ts)} turns, median {statistics.median(t.speedup for t in ts):.2f}")
                 bx.scatter([t.ms_m for t in ts], [t.ms_n for t in ts], s=9, alpha=0.5, color=colours[name], label=name)
         ax.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
         ax.set_xscale("log")
-        trips = [max(t.trip_before, t.trip_after) for t in turns]
+        trips = [t.trip for t in turns]
         wide = math.log10(max(trips) / min(trips)) > 2  # a host stall of a millisecond stretches the axis
         ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1,) if wide else (1, 2, 5)))
         ax.xaxis.set_major_formatter(matplotlib.ticker.StrMethodFormatter("{x:,.0f}"))
