@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "host_probes.hpp"
 #include "pictures.hpp"
 #include "prepare.hpp"
 #include "run_command.hpp"
@@ -108,29 +109,20 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
   return turn;
 }
 
-// How long one cache line takes to go from the team's thread 0 to its thread 1 and back, in ns:
-// the two pass a counter to and fro `trips` times. On the 2-vCPU VMs of issue 11 it swings
-// between ~100 ns and ~450 ns as the host moves the vCPUs, and a two-thread step, which moves a
-// hundred-odd lines between its threads each pass, reaches ×1.85 only while it is short
-// (docs/performance.md). Read beside every turn, it says which state of the host the figures
-// met. NaN when OpenMP gives fewer than two threads.
-double line_round_trip_ns(long trips) {
-  alignas(64) std::atomic<long> ball{0};
-  int team = 0;
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-#pragma omp parallel num_threads(2)
-  {
-    const int me = omp_get_thread_num();
-    if (me == 0) team = omp_get_num_threads();
-    if (omp_get_num_threads() == 2)
-      for (long k = me; k < 2 * trips; k += 2) {
-        while (ball.load(std::memory_order_acquire) != k) {}
-        ball.store(k + 1, std::memory_order_release);
-      }
-  }
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return team == 2 ? seconds / static_cast<double>(trips) * 1e9 : std::nan("");
+// `name`_reads and `name``unit`_min, _median and _max of `values`, if any were read.
+void print_spread(const char* name, const char* unit, const char* format, std::vector<double> values) {
+  if (values.empty()) return;
+  std::sort(values.begin(), values.end());
+  const std::size_t k = values.size();
+  const auto line = [&](const char* what, double v) {
+    std::printf("%s%s_%s: ", name, unit, what);
+    std::printf(format, v);
+    std::printf("\n");
+  };
+  std::printf("%s_reads: %zu\n", name, k);
+  line("min", values.front());
+  line("median", (values[(k - 1) / 2] + values[k / 2]) / 2);
+  line("max", values.back());
 }
 
 }  // namespace
@@ -182,28 +174,38 @@ int bench_command(const BenchOptions& o) {
   };
   Ceiling ceiling;
   const bool turns = o.against_threads > 0 || o.ceiling;
-  // The host's line round trip before every turn and after the last (two threads or more; NaN
-  // where not read, and then not kept).
+  // The host's state before every turn and after the last, at two threads or more (NaN where
+  // not read, and then not kept): the line round trip (on the 2-vCPU VMs of issue 11 it swings
+  // between ~100 and ~600 ns as the host moves the vCPUs; a two-thread step moves a hundred-odd
+  // lines between its threads each pass) and what two threads' arithmetic gains over one's
+  // (about 1 while the host keeps both on one core; docs/performance.md).
+  struct HostState {
+    double trip_ns, pair_speedup;
+  };
   const double nan = std::nan("");
-  const bool read_trips = std::max(o.threads, o.against_threads) >= 2;
-  std::vector<double> trips_ns;
-  auto read_trip = [&] {
-    const double ns = read_trips ? line_round_trip_ns(2000) : nan;
-    if (!std::isnan(ns)) trips_ns.push_back(ns);
-    return ns;
+  const bool read_host = std::max(o.threads, o.against_threads) >= 2;
+  std::vector<double> trips_ns, pair_speedups;
+  auto read_host_state = [&] {
+    // The arithmetic first: the round trip's region leaves the other thread spinning.
+    HostState h{nan, read_host ? arithmetic_pair_speedup(400000) : nan};
+    h.trip_ns = read_host ? line_round_trip_ns(2000) : nan;
+    if (!std::isnan(h.trip_ns)) trips_ns.push_back(h.trip_ns);
+    if (!std::isnan(h.pair_speedup)) pair_speedups.push_back(h.pair_speedup);
+    return h;
   };
   // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn
   // and, with --ceiling, against what the host gave copies that share nothing in that turn.
   std::ostringstream turn_log;
   turn_log << "turn,steps,threads,seconds,against_threads,against_seconds,speedup,"
               "line_round_trip_ns_before,line_round_trip_ns_after,"
-              "ceiling_alone_seconds,ceiling_lockstep_seconds,ceiling_lockstep_speedup\n";
+              "ceiling_alone_seconds,ceiling_lockstep_seconds,ceiling_lockstep_speedup,"
+              "arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n";
   auto csv = [](const char* format, double v) {
     char text[32] = "";
     if (!std::isnan(v)) std::snprintf(text, sizeof text, format, v);
     return std::string(text);
   };
-  double before = read_trip();
+  HostState before = read_host_state();
   for (long long k = 0; mine.steps < o.steps; ++k) {
     const long long turn = turns ? std::min(o.turn_steps, o.steps - mine.steps) : o.steps;
     const Ceiling copies = o.ceiling ? ceiling_turn(world, o.threads, turn, o.ceiling_halo) : Ceiling{};
@@ -211,13 +213,14 @@ int bench_command(const BenchOptions& o) {
     const double mine_before = mine.seconds, other_before = other.seconds;
     run_turn(mine, turn);
     if (o.against_threads > 0) run_turn(other, turn);
-    const double after = read_trip();
+    const HostState after = read_host_state();
     const double t_mine = mine.seconds - mine_before, t_other = other.seconds - other_before;
     turn_log << k << ',' << turn << ',' << mine.threads << ',' << csv("%.9g", t_mine) << ',' << other.threads << ','
-             << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ',' << csv("%.0f", before) << ','
-             << csv("%.0f", after) << ',' << csv("%.9g", o.ceiling ? copies.alone : nan) << ','
+             << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ',' << csv("%.0f", before.trip_ns) << ','
+             << csv("%.0f", after.trip_ns) << ',' << csv("%.9g", o.ceiling ? copies.alone : nan) << ','
              << csv("%.9g", o.ceiling ? copies.lockstep : nan) << ','
-             << csv("%.4f", o.ceiling ? copies.alone / copies.lockstep : nan) << '\n';
+             << csv("%.4f", o.ceiling ? copies.alone / copies.lockstep : nan) << ','
+             << csv("%.3f", before.pair_speedup) << ',' << csv("%.3f", after.pair_speedup) << '\n';
     before = after;
   }
   if (!o.turn_log.empty()) io::write_file_atomically(o.turn_log, turn_log.str());
@@ -266,14 +269,8 @@ int bench_command(const BenchOptions& o) {
       std::printf("ceiling_halo_speedup: %.3f\n", ceiling.alone / ceiling.halo);
     }
   }
-  if (!trips_ns.empty()) {
-    std::sort(trips_ns.begin(), trips_ns.end());
-    const std::size_t k = trips_ns.size();
-    std::printf("line_round_trip_reads: %zu\n", k);
-    std::printf("line_round_trip_ns_min: %.0f\n", trips_ns.front());
-    std::printf("line_round_trip_ns_median: %.0f\n", (trips_ns[(k - 1) / 2] + trips_ns[k / 2]) / 2);
-    std::printf("line_round_trip_ns_max: %.0f\n", trips_ns.back());
-  }
+  print_spread("line_round_trip", "_ns", "%.0f", trips_ns);
+  print_spread("arithmetic_pair_speedup", "", "%.3f", pair_speedups);
   return 0;
 }
 

@@ -6,8 +6,12 @@ On VMs whose vCPUs the host moves, the round trip between two threads swings bet
 a slow state, and a two-thread step's speed-up with it. This reads one or more turn logs, prints
 the median speed-up of the turns whose round trips before and after both lie under --fast-below
 ns, of those whose both lie over --slow-above ns, and of the rest, and with --out draws every turn.
+Logs that hold two threads' arithmetic over one's (arithmetic_pair_speedup_*) are also split by it:
+two cores' worth (both reads at least --two-cores), one core's (both at most --one-core: the host
+has put the two threads on one core's hyperthreads, where nothing can gain ×1.85), and between.
 
   /usr/bin/python3 scripts/turn_log_plot.py turns_*.csv [--out FIG.png] [--fast-below 250] [--slow-above 400]
+      [--two-cores 1.8] [--one-core 1.3]
 """
 import argparse
 import csv
@@ -24,6 +28,8 @@ class Turn(NamedTuple):
     ms_n: float  # ms per 1,000 steps at N threads (--threads)
     ms_m: float  # ms per 1,000 steps at M threads (--against-threads)
     lockstep: float  # copies alone over in lockstep; NaN without bench --ceiling
+    pair_before: float  # two threads' arithmetic over one's; NaN in logs from before it was read
+    pair_after: float
 
     @property
     def trip(self):  # the larger round trip around the turn: what the drawing's x is
@@ -42,7 +48,9 @@ def read_turns(paths):
                     turns.append(Turn(float(row["line_round_trip_ns_before"]), float(row["line_round_trip_ns_after"]),
                                       float(row["speedup"]), float(row["seconds"]) / thousands * 1e3,
                                       float(row["against_seconds"]) / thousands * 1e3,
-                                      float(row.get("ceiling_lockstep_speedup") or "nan")))
+                                      float(row.get("ceiling_lockstep_speedup") or "nan"),
+                                      float(row.get("arithmetic_pair_speedup_before") or "nan"),
+                                      float(row.get("arithmetic_pair_speedup_after") or "nan")))
                 except (KeyError, TypeError, ValueError, ZeroDivisionError) as e:
                     sys.exit(f"{path}:{line}: not a row of runout bench --turn-log ({type(e).__name__}: {e})")
     return turns
@@ -54,10 +62,14 @@ def main():
     ap.add_argument("--out", help="draw the turns to this PNG, PDF or SVG")
     ap.add_argument("--fast-below", type=float, default=250, help="ns (default 250)")
     ap.add_argument("--slow-above", type=float, default=400, help="ns (default 400)")
+    ap.add_argument("--two-cores", type=float, default=1.8, help="arithmetic pair speed-up (default 1.8)")
+    ap.add_argument("--one-core", type=float, default=1.3, help="arithmetic pair speed-up (default 1.3)")
     ap.add_argument("--target", type=float, default=1.85, help="speed-up line to draw (default 1.85)")
     a = ap.parse_args()
     if not a.fast_below < a.slow_above:
         sys.exit("--fast-below must be under --slow-above")
+    if not a.one_core < a.two_cores:
+        sys.exit("--one-core must be under --two-cores")
     turns = read_turns(a.logs)
     if not turns:
         sys.exit("no turns in " + ", ".join(a.logs))
@@ -87,6 +99,15 @@ def main():
     print(f"with the M-thread side at full speed (at most {full:.1f} ms per 1,000 steps: 1.1 × its 10th percentile):")
     for name, ts in classes.items():
         print(f"  {name}: {summary([t for t in ts if t.ms_m <= full])}")
+    paired = [t for t in turns if not math.isnan(t.pair_before) and not math.isnan(t.pair_after)]
+    if paired:
+        print("by two threads' arithmetic over one's, read before and after the turn:")
+        cores = {f"two cores' worth (both ≥ {a.two_cores:g})": [], f"one core's (both ≤ {a.one_core:g})": [], "between": []}
+        for t in paired:
+            lo, hi = min(t.pair_before, t.pair_after), max(t.pair_before, t.pair_after)
+            cores[list(cores)[0 if lo >= a.two_cores else 1 if hi <= a.one_core else 2]].append(t)
+        for name, ts in cores.items():
+            print(f"  {name}: {summary(ts)}")
     if a.out:
         import matplotlib
         matplotlib.use("Agg")

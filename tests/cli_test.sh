@@ -126,19 +126,33 @@ check bench_ceiling_halo 0 'ceiling_halo_discs: 1$' -- "$bin" bench --scene "$wo
 check bench_ceiling_halo_speedup 0 'ceiling_halo_speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo 0
 check bench_ceiling_halo_needs_ceiling 2 'ceiling-halo requires --ceiling' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling-halo 5
 check bench_ceiling_halo_negative 2 'ceiling-halo: Value -1 not in range' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ceiling --ceiling-halo -1
-# bench at two threads reads the host's cache-line round trip before every turn and after the
-# last: 10 steps in turns of 3 are 4 turns, so 5 reads; min <= median <= max; none at one thread.
+# bench at two threads reads the host's cache-line round trip and two threads' arithmetic over
+# one's before every turn and after the last: 10 steps in turns of 3 are 4 turns, so 5 reads;
+# min <= median <= max; neither at one thread.
 check bench_round_trip_reads 0 'line_round_trip_reads: 5$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
-trips=$("$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 2>/dev/null | sed -n 's/^line_round_trip_ns_\(min\|median\|max\): //p' | tr '\n' ' ')
-if ! awk -v t="$trips" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[1] <= v[2] && v[2] <= v[3]) }'; then
-  echo "FAIL bench_round_trip_order: min, median, max = '$trips'"; fail=$((fail + 1))
+check bench_pair_speedup_reads 0 'arithmetic_pair_speedup_reads: 5$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
+"$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 >"$work/probes.txt" 2>/dev/null
+for probe in line_round_trip_ns arithmetic_pair_speedup; do
+  spread=$(sed -n "s/^${probe}_\(min\|median\|max\): //p" "$work/probes.txt" | tr '\n' ' ')
+  if ! awk -v t="$spread" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[1] <= v[2] && v[2] <= v[3]) }'; then
+    echo "FAIL bench_${probe}_order: min, median, max = '$spread'"; fail=$((fail + 1))
+  else pass=$((pass + 1)); fi
+done
+if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | grep -q 'line_round_trip\|arithmetic_pair'; then
+  echo "FAIL bench_probes_one_thread: printed at one thread"; fail=$((fail + 1))
 else pass=$((pass + 1)); fi
-if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | grep -q line_round_trip; then
-  echo "FAIL bench_round_trip_one_thread: printed at one thread"; fail=$((fail + 1))
+# Two threads held to one CPU take turns: their arithmetic together takes twice one's (about 1,
+# where two cores give about 2), and the round trip, passed at each switch, stays short (it spun
+# a whole time slice a trip before: 16 s a read).
+cpu=$(taskset -pc $$ | sed 's/.*: //; s/[-,].*//')
+timeout 60 taskset -c "$cpu" "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 >"$work/one_cpu.txt" 2>/dev/null
+one_cpu=$(sed -n 's/^arithmetic_pair_speedup_median: //p' "$work/one_cpu.txt")
+if ! awk -v x="$one_cpu" 'BEGIN { exit !(x != "" && x > 0.7 && x < 1.4) }'; then
+  echo "FAIL bench_pair_speedup_one_cpu: '$one_cpu', not about 1"; fail=$((fail + 1))
 else pass=$((pass + 1)); fi
 # --turn-log: a CSV row per turn (10 steps in turns of 3: 3, 3, 3, 1), read back with Python's csv
 # module: the steps add up to --steps, each speed-up is its turn's seconds' ratio, and each turn's
-# round trip after is the next turn's before. A missing folder is refused before any work.
+# round trip and arithmetic after are the next turn's before. A missing folder is refused before any work.
 check bench_turn_log 0 'speedup: ' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3 --turn-log "$work/turns.csv"
 /usr/bin/python3 - "$work/turns.csv" <<'PY' || { echo "FAIL bench_turn_log_rows"; fail=$((fail + 1)); }
 import csv, sys
@@ -149,7 +163,9 @@ for r in rows:
     s, a = float(r["seconds"]), float(r["against_seconds"])
     assert s > 0 and a > 0 and abs(float(r["speedup"]) - a / s) <= 1e-4 * a / s + 6e-5, r
     assert float(r["line_round_trip_ns_before"]) > 0 and float(r["line_round_trip_ns_after"]) > 0
-assert all(rows[k]["line_round_trip_ns_after"] == rows[k + 1]["line_round_trip_ns_before"] for k in range(len(rows) - 1))
+for probe in ("line_round_trip_ns", "arithmetic_pair_speedup"):
+    assert all(float(r[probe + "_before"]) > 0 for r in rows), probe
+    assert all(rows[k][probe + "_after"] == rows[k + 1][probe + "_before"] for k in range(len(rows) - 1)), probe
 assert all(r["ceiling_alone_seconds"] == r["ceiling_lockstep_seconds"] == r["ceiling_lockstep_speedup"] == "" for r in rows)
 PY
 # With --ceiling the log also holds each turn's copies: alone over lockstep is the printed ratio.
@@ -170,6 +186,14 @@ for row in "10 17 100 120" "10 18 120 110" "10 19 130 140" "10 15 500 600" "10 1
 done
 check turn_log_plot_fast 0 'fast \(both < 250 ns\): 3 turns, speed-up median 1\.800' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
 check turn_log_plot_slow 0 'slow \(both > 400 ns\): 2 turns, speed-up median 1\.550' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
+# Split by two threads' arithmetic over one's: three turns with both reads >= 1.8 (speed-ups 1.7,
+# 1.8, 1.9: median 1.8), two with both <= 1.3 (1.0, 1.2: median 1.1), one with a read each side.
+printf 'turn,steps,threads,seconds,against_threads,against_seconds,speedup,line_round_trip_ns_before,line_round_trip_ns_after,arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n' >"$work/made_pairs.csv"
+for row in "10 17 1.9 2.0" "10 18 1.8 1.95" "10 19 2.0 1.85" "10 10 1.0 1.1" "10 12 1.3 1.05" "10 20 1.9 1.2"; do
+  set -- $row; printf '0,1000,2,%s,1,%s,%s,300,300,%s,%s\n' "$1" "$2" "$(awk -v a="$2" -v b="$1" 'BEGIN{print a/b}')" "$3" "$4" >>"$work/made_pairs.csv"
+done
+check turn_log_plot_two_cores 0 "two cores' worth \\(both ≥ 1\\.8\\): 3 turns, speed-up median 1\\.800" -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made_pairs.csv"
+check turn_log_plot_one_core 0 "one core's \\(both ≤ 1\\.3\\): 2 turns, speed-up median 1\\.100" -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made_pairs.csv"
 printf 'a,b\n1,2\n' >"$work/not_a_log.csv"
 check turn_log_plot_bad_file 1 'not_a_log.csv:2: not a row of runout bench --turn-log' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/not_a_log.csv"
 check turn_log_plot_draws 0 'drawn: ' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/turns.csv" --out "$work/turns.png"

@@ -1,0 +1,83 @@
+// The host probes of `runout bench` (host_probes.hpp).
+#include "host_probes.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+namespace runout::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Independent multiply–add chains, enough of them to keep a core's floating-point pipes full
+// rather than wait on one chain's latency, and few enough to stay in registers.
+void arithmetic(long rounds) {
+  std::array<double, 24> a;
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 1.0 + 1e-9 * static_cast<double>(i);
+  for (long r = 0; r < rounds; ++r)
+    for (double& v : a) v = v * 0.999999999 + 1e-9;
+  double sum = 0;
+  for (double v : a) sum += v;
+  // The sum is used by nothing else: this empty statement claims it, so the loop is kept.
+  asm volatile("" : : "x"(sum));
+}
+
+}  // namespace
+
+double line_round_trip_ns(long trips) {
+  alignas(64) std::atomic<long> ball{0};
+  int team = 0;
+  const auto start = Clock::now();
+#pragma omp parallel num_threads(2)
+  {
+    const int me = omp_get_thread_num();
+    if (me == 0) team = omp_get_num_threads();
+    // Yielding after a while, so two threads on one CPU (a cgroup or taskset of one) pass the
+    // ball at each switch rather than once per time slice (~8 ms a trip).
+    if (omp_get_num_threads() == 2)
+      for (long k = me; k < 2 * trips; k += 2) {
+        for (int spins = 0; ball.load(std::memory_order_acquire) != k; ++spins)
+          if (spins > 4096) std::this_thread::yield();
+        ball.store(k + 1, std::memory_order_release);
+      }
+  }
+  const double seconds = seconds_since(start);
+  return team == 2 ? seconds / static_cast<double>(trips) * 1e9 : std::nan("");
+}
+
+double arithmetic_pair_speedup(long rounds) {
+  // The better of two reads alone: the first may meet the other thread still spinning after the
+  // region before it (OpenMP's wait policy), which on a shared core slows this one.
+  double alone = 1e300;
+  for (int read = 0; read < 2; ++read) {
+    const auto t0 = Clock::now();
+    arithmetic(rounds);
+    alone = std::min(alone, seconds_since(t0));
+  }
+  // Together: from the first thread's start to the last one's end, so two threads that take
+  // turns on one CPU count as the two loops one after the other (2 × alone / together = 1).
+  const auto epoch = Clock::now();
+  double first_start = 1e300, last_end = 0;
+  int team = 0;
+#pragma omp parallel num_threads(2) reduction(min : first_start) reduction(max : last_end)
+  {
+    if (omp_get_thread_num() == 0) team = omp_get_num_threads();
+    // Both start once both are awake.
+#pragma omp barrier
+    first_start = seconds_since(epoch);
+    arithmetic(rounds);
+    last_end = seconds_since(epoch);
+  }
+  return team == 2 ? 2 * alone / (last_end - first_start) : std::nan("");
+}
+
+}  // namespace runout::app
