@@ -100,6 +100,7 @@ def main():
     for name, ts in classes.items():
         print(f"  {name}: {summary([t for t in ts if t.ms_m <= full])}")
     paired = [t for t in turns if not math.isnan(t.pair_before) and not math.isnan(t.pair_after)]
+    paired_set = set(map(id, paired))
     if paired:
         print("by two threads' arithmetic over one's, read before and after the turn:")
         cores = {f"two cores' worth (both ≥ {a.two_cores:g})": [], f"one core's (both ≤ {a.one_core:g})": [], "between": []}
@@ -113,7 +114,8 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         import matplotlib.ticker
-        fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 4.8), dpi=150)
+        fig, axes = plt.subplots(1, 3 if paired else 2, figsize=(18 if paired else 12, 4.8), dpi=150)
+        ax, bx = axes[0], axes[1]
         colours = dict(zip(classes, ["tab:blue", "tab:red", "tab:gray"]))
         for name, ts in classes.items():
             if ts:
@@ -148,6 +150,22 @@ def main():
         bx.set_title("Each turn's two sides (below a line: faster than its speed-up)", fontsize=10)
         bx.grid(True, which="both", alpha=0.3)
         bx.legend(fontsize=7, loc="upper left")
+        if paired:
+            # Third: each turn against what the host gave two threads' arithmetic around it.
+            cx = axes[2]
+            for name, ts in classes.items():
+                ts = [t for t in ts if id(t) in paired_set]
+                if ts:
+                    cx.scatter([min(t.pair_before, t.pair_after) for t in ts], [t.speedup for t in ts], s=9,
+                               alpha=0.5, color=colours[name], label=name)
+            cx.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
+            for edge in (a.one_core, a.two_cores):
+                cx.axvline(edge, color="black", lw=0.6, ls=":")
+            cx.set_xlabel("two threads' arithmetic over one's, the smaller of before and after")
+            cx.set_ylabel("turn's speed-up (seconds at M threads / at N)")
+            cx.set_title("Speed-up against what the host gave two threads", fontsize=10)
+            cx.grid(True, alpha=0.3)
+            cx.legend(fontsize=7, loc="upper left")
         fig.suptitle("runout bench --turn-log: " + ", ".join(a.logs) if len(a.logs) < 3 else
                      f"runout bench --turn-log: {len(a.logs)} runs, {len(turns)} turns", fontsize=11)
         fig.tight_layout()
