@@ -2,8 +2,9 @@
 # One thread against two on the bench pile, alternating so the machine's drift hits both alike.
 # Usage: scripts/thread_scaling.sh BIN [ROUNDS=5] [STEPS=40000] [extra bench options...]
 # Prints each round's pair and the medians; the last line is "two/one: R" (ratio of medians).
-# Each round also shows the host's cache-line round trip between two threads, as the two-thread
-# bench read it (median of its reads; its fast and slow modes: docs/performance.md, issue 11).
+# Each round also shows what the two-thread bench read of the host (medians of its reads): the
+# cache-line round trip between two threads (its fast and slow modes) and two threads' arithmetic
+# over one's (about 1 while the host keeps both threads on one core; docs/performance.md, issue 11).
 set -euo pipefail
 B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
 out=$(mktemp); trap 'rm -f "$out"' EXIT
@@ -12,8 +13,9 @@ one=(); two=()
 for i in $(seq "$R"); do
   a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")
   trip=$(sed -n 's/^line_round_trip_ns_median: *//p' "$out")
-  printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s, two/one %.2f, line round trip %s ns\n' \
-    "$i" "$a" "$b" "$(/usr/bin/python3 -c "print($b/$a)")" "${trip:-?}"
+  pair=$(sed -n 's/^arithmetic_pair_speedup_median: *//p' "$out")
+  printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s, two/one %.2f, line round trip %s ns, arithmetic x%s\n' \
+    "$i" "$a" "$b" "$(/usr/bin/python3 -c "print($b/$a)")" "${trip:-?}" "${pair:-?}"
 done
 /usr/bin/python3 -c "
 import statistics as s
