@@ -88,10 +88,12 @@ def main():
         if len(s) < 2:
             return f"{len(s)} turn(s)" + (f", speed-up {s[0]:.3f}" if s else "")
         q = statistics.quantiles(s, n=4)
-        copies = [t.lockstep for t in ts if not math.isnan(t.lockstep)]
+        copies = [t for t in ts if not math.isnan(t.lockstep)]
         return (f"{len(s)} turns, speed-up median {statistics.median(s):.3f}, quartiles {q[0]:.3f}–{q[2]:.3f}, "
                 f"{sum(v >= a.target for v in s) / len(s):.0%} ≥ {a.target:g}"
-                + (f"; copies in lockstep median {statistics.median(copies):.3f}" if copies else ""))
+                + (f"; copies in lockstep median {statistics.median(t.lockstep for t in copies):.3f}, "
+                   f"the step over them turn by turn {statistics.median(t.speedup / t.lockstep for t in copies):.3f}"
+                   if copies else ""))
 
     print(f"turns: {len(turns)}")
     for name, ts in classes.items():
@@ -109,6 +111,11 @@ def main():
             cores[list(cores)[0 if lo >= a.two_cores else 1 if hi <= a.one_core else 2]].append(t)
         for name, ts in cores.items():
             print(f"  {name}: {summary(ts)}")
+        # Where the host gave two cores, what the round trip still costs.
+        two = list(cores)[0]
+        for name, ts in classes.items():
+            members = set(map(id, ts))
+            print(f"  {two}, round trip {name}: {summary([t for t in cores[two] if id(t) in members])}")
     if a.out:
         import matplotlib
         matplotlib.use("Agg")
