@@ -8,11 +8,13 @@ namespace runout::app {
 // the two pass a counter to and fro `trips` times. NaN when OpenMP gives fewer than two threads.
 double line_round_trip_ns(long trips);
 
-// Two threads' arithmetic over one thread's: the same register-only loop timed on the calling
-// thread alone (the better of two reads) and on two threads at once, as 2 × alone / together.
+// Two threads' arithmetic over one thread's: the same loop, on registers and a few constants in
+// L1, timed on the calling thread alone and on two threads at once (the better of two reads of
+// each), as 2 × alone / together.
 // About 2 when each thread has a core, or the same share of one, to itself; about 1 when the host
 // has put them on the two hyperthreads of one core, where one thread alone runs nearly twice as
-// fast as each of two. It touches no memory, so caches and the other thread's data play no part.
+// fast as each of two; about 1 too when the two take turns on one CPU. It reads no data, so
+// caches and the other thread's lines play no part.
 // NaN when OpenMP gives fewer than two threads.
 double arithmetic_pair_speedup(long rounds);
 

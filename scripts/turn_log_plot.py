@@ -74,10 +74,13 @@ def main():
     if not turns:
         sys.exit("no turns in " + ", ".join(a.logs))
     fast, slow = f"fast (both < {a.fast_below:g} ns)", f"slow (both > {a.slow_above:g} ns)"
+
+    def trip_class(t):
+        return fast if t.trip < a.fast_below else slow if min(t.trip_before, t.trip_after) > a.slow_above else "between"
+
     classes = {fast: [], slow: [], "between": []}
     for t in turns:
-        slower = min(t.trip_before, t.trip_after) > a.slow_above
-        classes[fast if t.trip < a.fast_below else slow if slower else "between"].append(t)
+        classes[trip_class(t)].append(t)
     # A turn whose M-thread side the host slowed has a speed-up lifted by it, not earned: the
     # same medians again over the turns whose M-thread side ran at full speed.
     m_side = [t.ms_m for t in turns]
@@ -102,20 +105,20 @@ def main():
     for name, ts in classes.items():
         print(f"  {name}: {summary([t for t in ts if t.ms_m <= full])}")
     paired = [t for t in turns if not math.isnan(t.pair_before) and not math.isnan(t.pair_after)]
-    paired_set = set(map(id, paired))
+    two_cores, one_core = f"two cores' worth (both ≥ {a.two_cores:g})", f"one core's (both ≤ {a.one_core:g})"
+
+    def pair_class(t):
+        lo, hi = min(t.pair_before, t.pair_after), max(t.pair_before, t.pair_after)
+        return two_cores if lo >= a.two_cores else one_core if hi <= a.one_core else "between"
+
     if paired:
         print("by two threads' arithmetic over one's, read before and after the turn:")
-        cores = {f"two cores' worth (both ≥ {a.two_cores:g})": [], f"one core's (both ≤ {a.one_core:g})": [], "between": []}
-        for t in paired:
-            lo, hi = min(t.pair_before, t.pair_after), max(t.pair_before, t.pair_after)
-            cores[list(cores)[0 if lo >= a.two_cores else 1 if hi <= a.one_core else 2]].append(t)
-        for name, ts in cores.items():
-            print(f"  {name}: {summary(ts)}")
+        for name in (two_cores, one_core, "between"):
+            print(f"  {name}: {summary([t for t in paired if pair_class(t) == name])}")
         # Where the host gave two cores, what the round trip still costs.
-        two = list(cores)[0]
-        for name, ts in classes.items():
-            members = set(map(id, ts))
-            print(f"  {two}, round trip {name}: {summary([t for t in cores[two] if id(t) in members])}")
+        for name in classes:
+            ts = [t for t in paired if pair_class(t) == two_cores and trip_class(t) == name]
+            print(f"  {two_cores}, round trip {name}: {summary(ts)}")
     if a.out:
         import matplotlib
         matplotlib.use("Agg")
@@ -160,8 +163,8 @@ def main():
         if paired:
             # Third: each turn against what the host gave two threads' arithmetic around it.
             cx = axes[2]
-            for name, ts in classes.items():
-                ts = [t for t in ts if id(t) in paired_set]
+            for name in classes:
+                ts = [t for t in paired if trip_class(t) == name]
                 if ts:
                     cx.scatter([min(t.pair_before, t.pair_after) for t in ts], [t.speedup for t in ts], s=9,
                                alpha=0.5, color=colours[name], label=name)

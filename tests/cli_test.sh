@@ -129,9 +129,12 @@ check bench_ceiling_halo_negative 2 'ceiling-halo: Value -1 not in range' -- "$b
 # bench at two threads reads the host's cache-line round trip and two threads' arithmetic over
 # one's before every turn and after the last: 10 steps in turns of 3 are 4 turns, so 5 reads;
 # min <= median <= max; neither at one thread.
-check bench_round_trip_reads 0 'line_round_trip_reads: 5$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
-check bench_pair_speedup_reads 0 'arithmetic_pair_speedup_reads: 5$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
-"$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 >"$work/probes.txt" 2>/dev/null
+"$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3 >"$work/probes.txt" 2>/dev/null
+for probe in line_round_trip arithmetic_pair_speedup; do
+  if ! grep -q "^${probe}_reads: 5$" "$work/probes.txt"; then
+    echo "FAIL bench_${probe}_reads: $(grep "^${probe}_reads" "$work/probes.txt")"; fail=$((fail + 1))
+  else pass=$((pass + 1)); fi
+done
 for probe in line_round_trip_ns arithmetic_pair_speedup; do
   spread=$(sed -n "s/^${probe}_\(min\|median\|max\): //p" "$work/probes.txt" | tr '\n' ' ')
   if ! awk -v t="$spread" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[1] <= v[2] && v[2] <= v[3]) }'; then
@@ -142,14 +145,19 @@ if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | gr
   echo "FAIL bench_probes_one_thread: printed at one thread"; fail=$((fail + 1))
 else pass=$((pass + 1)); fi
 # Two threads held to one CPU take turns: their arithmetic together takes twice one's (about 1,
-# where two cores give about 2), and the round trip, passed at each switch, stays short (it spun
-# a whole time slice a trip before: 16 s a read).
-cpu=$(taskset -pc $$ | sed 's/.*: //; s/[-,].*//')
-timeout 60 taskset -c "$cpu" "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 >"$work/one_cpu.txt" 2>/dev/null
-one_cpu=$(sed -n 's/^arithmetic_pair_speedup_median: //p' "$work/one_cpu.txt")
-if ! awk -v x="$one_cpu" 'BEGIN { exit !(x != "" && x > 0.7 && x < 1.4) }'; then
-  echo "FAIL bench_pair_speedup_one_cpu: '$one_cpu', not about 1"; fail=$((fail + 1))
-else pass=$((pass + 1)); fi
+# where two cores give about 2; the median of 11 reads, and this test runs alone: CMakeLists),
+# and the round trip, passed at each switch, stays short (it spun a whole time slice a trip
+# before: 16 s a read, so the 60 s limit would end it).
+if command -v taskset >/dev/null; then
+  cpu=$(taskset -pc $$ | sed 's/.*: //; s/[-,].*//')
+  timeout 60 taskset -c "$cpu" "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 1 >"$work/one_cpu.txt" 2>/dev/null
+  one_cpu=$(sed -n 's/^arithmetic_pair_speedup_median: //p' "$work/one_cpu.txt")
+  if ! awk -v x="$one_cpu" 'BEGIN { exit !(x != "" && x > 0.7 && x < 1.4) }'; then
+    echo "FAIL bench_pair_speedup_one_cpu: '$one_cpu', not about 1"; fail=$((fail + 1))
+  else pass=$((pass + 1)); fi
+else
+  echo "SKIP bench_pair_speedup_one_cpu: no taskset"
+fi
 # --turn-log: a CSV row per turn (10 steps in turns of 3: 3, 3, 3, 1), read back with Python's csv
 # module: the steps add up to --steps, each speed-up is its turn's seconds' ratio, and each turn's
 # round trip and arithmetic after are the next turn's before. A missing folder is refused before any work.
@@ -162,9 +170,8 @@ assert all(r["threads"] == "2" and r["against_threads"] == "1" for r in rows)
 for r in rows:
     s, a = float(r["seconds"]), float(r["against_seconds"])
     assert s > 0 and a > 0 and abs(float(r["speedup"]) - a / s) <= 1e-4 * a / s + 6e-5, r
-    assert float(r["line_round_trip_ns_before"]) > 0 and float(r["line_round_trip_ns_after"]) > 0
 for probe in ("line_round_trip_ns", "arithmetic_pair_speedup"):
-    assert all(float(r[probe + "_before"]) > 0 for r in rows), probe
+    assert all(float(r[probe + "_before"]) > 0 and float(r[probe + "_after"]) > 0 for r in rows), probe
     assert all(rows[k][probe + "_after"] == rows[k + 1][probe + "_before"] for k in range(len(rows) - 1)), probe
 assert all(r["ceiling_alone_seconds"] == r["ceiling_lockstep_seconds"] == r["ceiling_lockstep_speedup"] == "" for r in rows)
 PY
