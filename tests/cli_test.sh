@@ -185,24 +185,28 @@ for r in rows:
     alone, lockstep = float(r["ceiling_alone_seconds"]), float(r["ceiling_lockstep_seconds"])
     assert alone > 0 and lockstep > 0 and abs(float(r["ceiling_lockstep_speedup"]) - alone / lockstep) <= 1e-4 * alone / lockstep + 6e-5, r
 PY
-# scripts/turn_log_plot.py on turns made up here: three fast ones (1.7, 1.8, 1.9: median 1.8),
-# two slow ones (1.5, 1.6), one between; and it draws the bench's own log as a PNG.
-printf 'turn,steps,threads,seconds,against_threads,against_seconds,speedup,line_round_trip_ns_before,line_round_trip_ns_after\n' >"$work/made.csv"
-for row in "10 17 100 120" "10 18 120 110" "10 19 130 140" "10 15 500 600" "10 16 600 450" "10 20 200 500"; do
-  set -- $row; printf '0,1000,2,%s,1,%s,%s,%s,%s\n' "$1" "$2" "$(awk -v a="$2" -v b="$1" 'BEGIN{print a/b}')" "$3" "$4" >>"$work/made.csv"
-done
+# scripts/turn_log_plot.py on turns made up here, one log row per "SECONDS AGAINST_SECONDS
+# TRIP_BEFORE TRIP_AFTER PAIR_BEFORE PAIR_AFTER" (its speed-up is their ratio).
+made_log() {  # made_log FILE ROW...
+  local file=$1 row; shift
+  printf 'turn,steps,threads,seconds,against_threads,against_seconds,speedup,line_round_trip_ns_before,line_round_trip_ns_after,arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n' >"$file"
+  for row; do
+    set -- $row; printf '0,1000,2,%s,1,%s,%s,%s,%s,%s,%s\n' "$1" "$2" "$(awk -v a="$2" -v b="$1" 'BEGIN{print a/b}')" "$3" "$4" "${5-}" "${6-}" >>"$file"
+  done
+}
+# By round trip: three fast turns (1.7, 1.8, 1.9: median 1.8), two slow ones (1.5, 1.6), one
+# between; no arithmetic reads (empty cells, as where none were read), so no split by them.
+made_log "$work/made.csv" "10 17 100 120" "10 18 120 110" "10 19 130 140" "10 15 500 600" "10 16 600 450" "10 20 200 500"
 check turn_log_plot_fast 0 'fast \(both < 250 ns\): 3 turns, speed-up median 1\.800' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
 check turn_log_plot_slow 0 'slow \(both > 400 ns\): 2 turns, speed-up median 1\.550' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made.csv"
-# Split by two threads' arithmetic over one's: three turns with both reads >= 1.8 (speed-ups 1.7,
-# 1.8, 1.9: median 1.8), two with both <= 1.3 (1.0, 1.2: median 1.1), one with a read each side.
-printf 'turn,steps,threads,seconds,against_threads,against_seconds,speedup,line_round_trip_ns_before,line_round_trip_ns_after,arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n' >"$work/made_pairs.csv"
-for row in "10 17 1.9 2.0" "10 18 1.8 1.95" "10 19 2.0 1.85" "10 10 1.0 1.1" "10 12 1.3 1.05" "10 20 1.9 1.2"; do
-  set -- $row; printf '0,1000,2,%s,1,%s,%s,300,300,%s,%s\n' "$1" "$2" "$(awk -v a="$2" -v b="$1" 'BEGIN{print a/b}')" "$3" "$4" >>"$work/made_pairs.csv"
-done
+# By two threads' arithmetic over one's: three turns with both reads >= 1.8 (speed-ups 1.7, 1.8,
+# 1.9: median 1.8), two with both <= 1.3 (1.0, 1.2: median 1.1), one with a read each side.
+made_log "$work/made_pairs.csv" "10 17 300 300 1.9 2.0" "10 18 300 300 1.8 1.95" "10 19 300 300 2.0 1.85" "10 10 300 300 1.0 1.1" "10 12 300 300 1.3 1.05" "10 20 300 300 1.9 1.2"
 check turn_log_plot_two_cores 0 "two cores' worth \\(both ≥ 1\\.8\\): 3 turns, speed-up median 1\\.800" -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made_pairs.csv"
 check turn_log_plot_one_core 0 "one core's \\(both ≤ 1\\.3\\): 2 turns, speed-up median 1\\.100" -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/made_pairs.csv"
 printf 'a,b\n1,2\n' >"$work/not_a_log.csv"
 check turn_log_plot_bad_file 1 'not_a_log.csv:2: not a row of runout bench --turn-log' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/not_a_log.csv"
+# It draws the bench's own log as a PNG.
 check turn_log_plot_draws 0 'drawn: ' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/turns.csv" --out "$work/turns.png"
 /usr/bin/python3 -c "import sys; sys.exit(open(sys.argv[1], 'rb').read(8) != b'\x89PNG\r\n\x1a\n')" "$work/turns.png" || { echo "FAIL turn_log_plot_png"; fail=$((fail + 1)); }
 check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-log "$work/nowhere/turns.csv"
