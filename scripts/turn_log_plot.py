@@ -35,6 +35,10 @@ class Turn(NamedTuple):
     def trip(self):  # the larger round trip around the turn: what the drawing's x is
         return max(self.trip_before, self.trip_after)
 
+    @property
+    def pair(self):  # the smaller arithmetic read around the turn: what the classes and the third panel use
+        return min(self.pair_before, self.pair_after)
+
 
 def read_turns(paths):
     turns = []
@@ -108,8 +112,7 @@ def main():
     two_cores, one_core = f"two cores' worth (both ≥ {a.two_cores:g})", f"one core's (both ≤ {a.one_core:g})"
 
     def pair_class(t):
-        lo, hi = min(t.pair_before, t.pair_after), max(t.pair_before, t.pair_after)
-        return two_cores if lo >= a.two_cores else one_core if hi <= a.one_core else "between"
+        return two_cores if t.pair >= a.two_cores else one_core if max(t.pair_before, t.pair_after) <= a.one_core else "between"
 
     if paired:
         print("by two threads' arithmetic over one's, read before and after the turn:")
@@ -166,7 +169,7 @@ def main():
             for name in classes:
                 ts = [t for t in paired if trip_class(t) == name]
                 if ts:
-                    cx.scatter([min(t.pair_before, t.pair_after) for t in ts], [t.speedup for t in ts], s=9,
+                    cx.scatter([t.pair for t in ts], [t.speedup for t in ts], s=9,
                                alpha=0.5, color=colours[name], label=name)
             cx.axhline(a.target, color="black", lw=0.8, ls="--", label=f"target ×{a.target:g}")
             for edge in (a.one_core, a.two_cores):
