@@ -2,12 +2,8 @@
 # End-to-end checks of the runout command line: exit codes, error messages, files written.
 # Usage: cli_test.sh RUNOUT_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail=0
-pass=0
+bin=$1 src=$2
+source "$src/tests/lib.sh"
 check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
   local name=$1 want=$2 pattern=$3
   shift 4
@@ -34,24 +30,7 @@ check missing_file 2 'scene' -- "$bin" run "$work/nope.toml" --out "$work/x"
 check no_out 2 'out' -- "$bin" run
 
 # A short explicit scene: two discs collide on a floor; a summary and a time series appear.
-cat >"$work/two.toml" <<'TOML'
-[species.disc]
-diameter = 0.5
-[[walls]]
-points = [[-5.0, 0.0], [5.0, 0.0]]
-bed = true
-inside = "left"
-[[particles]]
-x = -1.0
-y = 0.25
-vx = 1.0
-[[particles]]
-x = 1.0
-y = 0.25
-vx = -1.0
-[output]
-end_time = 5.0
-TOML
+cp "$src/tests/data/two_discs.toml" "$work/two.toml"
 check explicit 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/two" -q --threads 1
 for f in summary.json timeseries.csv scene.resolved.toml checkpoint.bin; do
   [ -s "$work/two/$f" ] || { echo "FAIL explicit: $f missing"; fail=$((fail + 1)); }
@@ -315,5 +294,4 @@ if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
   check render_state 0 'wrote' -- "$bin" render "$work/poly/states/state_t0010.00.bin" -o "$work/poly10.png" --size 320x180
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

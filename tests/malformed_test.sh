@@ -6,9 +6,7 @@
 # {work} in args is a folder that exists, {self} a file that exists, {scene} the scene path.
 set -uo pipefail
 bin=$1 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0 fail=0
+source "$src/tests/lib.sh"
 for case in "$src"/tests/malformed/*.case; do
   name=$(basename "$case" .case)
   field() { sed -n "s/^# $1: \{0,1\}//p" "$case" | head -1; }
@@ -42,5 +40,4 @@ for case in "$src"/tests/malformed/*.case; do
     pass=$((pass + 1))
   fi
 done
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -4,12 +4,7 @@
 # and every byte of timeseries.csv equal those of a run that was never stopped.
 set -uo pipefail
 bin=$1 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL $*"; fail=$((fail + 1)); }
-py=python3; [ -x /usr/bin/python3 ] && py=/usr/bin/python3
+source "$src/tests/lib.sh"
 same_summary() {  # same_summary A B: every field but the wall times
   "$py" - "$1" "$2" <<'PY'
 import json, sys
@@ -23,28 +18,10 @@ if diff:
     sys.exit(1)
 PY
 }
-tree_sum() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
 box=$src/fuzz/checkpoint_scene.toml
 quick=$src/examples/quick.toml
 cache=(--cache-dir "$work/cache")
-cat >"$work/two.toml" <<'TOML'
-[species.disc]
-diameter = 0.5
-[[walls]]
-points = [[-5.0, 0.0], [5.0, 0.0]]
-bed = true
-inside = "left"
-[[particles]]
-x = -1.0
-y = 0.25
-vx = 1.0
-[[particles]]
-x = 1.0
-y = 0.25
-vx = -1.0
-[output]
-end_time = 5.0
-TOML
+cp "$src/tests/data/two_discs.toml" "$work/two.toml"
 
 # 1. Another scene's folder is refused and left exactly as it was; its checkpoint still renders.
 pictures=()
@@ -178,5 +155,4 @@ if [ -e "$work/A.png" ]; then
   [ $rc -eq 2 ] && ok || bad "compare missing file: exit $rc (want 2)"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

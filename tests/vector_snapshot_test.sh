@@ -11,11 +11,7 @@
 # Usage: vector_snapshot_test.sh RUNOUT_BINARY SOURCE_DIR
 set -uo pipefail
 bin=$1 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL $*"; fail=$((fail + 1)); }
+source "$src/tests/lib.sh"
 for tool in pdftoppm pdftotext rsvg-convert; do
   command -v $tool >/dev/null || { echo "FAIL: $tool is not installed (poppler-utils, librsvg2-bin)"; exit 1; }
 done
@@ -79,5 +75,4 @@ out=$("$bin" run "$src/examples/quick.toml" --out "$work/bad" -q --snapshots 1 -
 [ $rc -eq 2 ] && grep -q -- "--snapshot-format: bmp not in {png,pdf,svg}" <<<"$out" && [ ! -e "$work/bad" ] &&
   ok || bad "--snapshot-format bmp: exit $rc: $out"
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
