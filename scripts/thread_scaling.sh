@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # One thread against two on the bench pile, alternating so the machine's drift hits both alike.
 # Usage: scripts/thread_scaling.sh BIN [ROUNDS=5] [STEPS=40000] [extra bench options...]
-# Prints each round's pair and the medians; the last line is "two/one: R" (ratio of medians).
+# Prints each round's pair and the medians, the rounds' median two/one by the host's state (the
+# line round trip read by the two-thread bench: fast < 250 ns, slow > 400 ns, as
+# scripts/turn_log_plot.py splits turns); the last line is "two/one: R" (ratio of medians).
 # Each round also shows what the two-thread bench read of the host (medians of its reads): the
 # cache-line round trip between two threads (its fast and slow modes) and two threads' arithmetic
 # over one's (about 1 while the host keeps both threads on one core; docs/performance.md, issue 11).
@@ -9,17 +11,23 @@ set -euo pipefail
 B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
 out=$(mktemp); trap 'rm -f "$out"' EXIT
 rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null >"$out"; sed -n 's/^particle_steps_per_second: *//p' "$out"; }
-one=(); two=()
+one=(); two=(); trips=()
 for i in $(seq "$R"); do
   a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")
   trip=$(sed -n 's/^line_round_trip_ns_median: *//p' "$out")
   pair=$(sed -n 's/^arithmetic_pair_speedup_median: *//p' "$out")
+  trips+=("${trip:-nan}")
   printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s, two/one %.2f, line round trip %s ns, arithmetic x%s\n' \
     "$i" "$a" "$b" "$(/usr/bin/python3 -c "print($b/$a)")" "${trip:-?}" "${pair:-?}"
 done
 /usr/bin/python3 -c "
 import statistics as s
 a=[float(x) for x in '${one[*]}'.split()]; b=[float(x) for x in '${two[*]}'.split()]
+trip=[float(x) for x in '${trips[*]}'.split()]
 print(f'medians: 1 thread {s.median(a):.3g}, 2 threads {s.median(b):.3g} particle-steps/s')
 print(f'median of the rounds\' two/one: {s.median([y/x for x, y in zip(a, b)]):.2f}')
+for name, keep in (('fast (< 250 ns)', lambda t: t < 250), ('slow (> 400 ns)', lambda t: t > 400),
+                   ('between or not read', lambda t: not (t < 250 or t > 400))):
+    r = [y / x for x, y, t in zip(a, b, trip) if keep(t)]
+    print(f'rounds with the round trip {name}: {len(r)}' + (f', median two/one {s.median(r):.2f}' if r else ''))
 print(f'two/one: {s.median(b)/s.median(a):.2f}')"

@@ -192,6 +192,18 @@ check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$
 check bench_turn_log_needs_against 2 'turn-log requires --against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --turn-log "$work/t.csv"
 
 # The accuracy study: every variant runs (or is reported as failed) and the table is whole.
+# scripts/thread_scaling.sh: three rounds on the two discs; its rounds by round trip must be
+# the rounds' own round trips classed here (fast < 250 ns, slow > 400 ns), and the last line
+# the ratio of the medians.
+scaling=$("$src/scripts/thread_scaling.sh" "$bin" 3 10 --scene "$work/two.toml" 2>&1)
+if [ "$(grep -c '^round [0-9]: ' <<<"$scaling")" = 3 ] && grep -qE '^two/one: [0-9]+\.[0-9]{2}$' <<<"${scaling##*$'\n'}" &&
+  [ "$(awk '/^round /{for (i = 1; i < NF; ++i) if ($i == "trip") t = $(i + 1); c = t < 250 ? "fast" : t > 400 ? "slow" : "between"; n[c]++}
+            END {printf "%d %d %d", n["fast"], n["slow"], n["between"]}' <<<"$scaling")" = \
+    "$(sed -n 's/^rounds with the round trip [^:]*: \([0-9]*\).*/\1/p' <<<"$scaling" | tr '\n' ' ' | sed 's/ $//')" ]; then
+  pass=$((pass + 1))
+else
+  echo "FAIL thread_scaling_states:"; echo "$scaling" | tail -6; fail=$((fail + 1))
+fi
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
 [ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || { echo "FAIL study: runs.csv should have 11 x 2 rows"; fail=$((fail + 1)); }
