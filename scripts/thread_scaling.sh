@@ -8,9 +8,21 @@
 # cache-line round trip between two threads (its fast and slow modes) and two threads' arithmetic
 # over one's (about 1 while the host keeps both threads on one core; docs/performance.md, issue 11).
 set -euo pipefail
+usage() { echo "usage: scripts/thread_scaling.sh BIN [ROUNDS >= 1, default 5] [STEPS >= 1, default 40000] [bench options...]: $1" >&2; exit 2; }
+[ $# -ge 1 ] || usage "BIN (the runout binary) is missing"
 B=$1; R=${2:-5}; S=${3:-40000}; shift $(( $# < 3 ? $# : 3 ))
-out=$(mktemp); trap 'rm -f "$out"' EXIT
-rate() { local t=$1; shift; "$B" bench --threads "$t" --steps "$S" "$@" 2>/dev/null >"$out"; sed -n 's/^particle_steps_per_second: *//p' "$out"; }
+[ -x "$B" ] || usage "BIN $B is not an executable file"
+[[ "$R" =~ ^[1-9][0-9]*$ ]] || usage "ROUNDS $R is not a whole number >= 1"
+[[ "$S" =~ ^[1-9][0-9]*$ ]] || usage "STEPS $S is not a whole number >= 1"
+out=$(mktemp); err=$(mktemp); trap 'rm -f "$out" "$err"' EXIT
+# A bench that fails ends the go with its own message (the subshell's exit fails the assignment).
+rate() {
+  local t=$1; shift
+  if ! "$B" bench --threads "$t" --steps "$S" "$@" 2>"$err" >"$out"; then
+    { echo "thread_scaling.sh: $B bench --threads $t failed:"; tail -n 5 "$err"; } >&2; exit 1
+  fi
+  sed -n 's/^particle_steps_per_second: *//p' "$out"
+}
 one=(); two=(); trips=()
 for i in $(seq "$R"); do
   a=$(rate 1 "$@"); b=$(rate 2 "$@"); one+=("$a"); two+=("$b")

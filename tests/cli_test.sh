@@ -204,6 +204,10 @@ if [ "$(grep -c '^round [0-9]: ' <<<"$scaling")" = 3 ] && grep -qE '^two/one: [0
 else
   echo "FAIL thread_scaling_states:"; echo "$scaling" | tail -6; fail=$((fail + 1))
 fi
+check thread_scaling_no_bin 2 'BIN \(the runout binary\) is missing' -- "$src/scripts/thread_scaling.sh"
+check thread_scaling_bad_rounds 2 'ROUNDS 0 is not a whole number >= 1' -- "$src/scripts/thread_scaling.sh" "$bin" 0 10
+check thread_scaling_bench_fails 1 'bench --threads 1 failed:$' -- "$src/scripts/thread_scaling.sh" "$bin" 1 10 --scene "$work/nope.toml"
+check thread_scaling_bench_says_why 1 'File does not exist: .*nope.toml' -- "$src/scripts/thread_scaling.sh" "$bin" 1 10 --scene "$work/nope.toml"
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
 [ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
 [ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || { echo "FAIL study: runs.csv should have 11 x 2 rows"; fail=$((fail + 1)); }
