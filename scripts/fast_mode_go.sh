@@ -10,7 +10,12 @@
 # Usage: scripts/fast_mode_go.sh BIN ROUND_TRIP_BIN [MINUTES=60] [OUT=fast_mode_gos] [LIMIT=160]
 #   ROUND_TRIP_BIN: g++ -O2 -pthread scripts/line_round_trip.cpp -o /tmp/line_round_trip
 set -euo pipefail
+usage() { echo "usage: scripts/fast_mode_go.sh BIN ROUND_TRIP_BIN [MINUTES=60] [OUT=fast_mode_gos] [LIMIT=160]: $1" >&2; exit 2; }
+[ $# -ge 2 ] || usage "BIN (runout) and ROUND_TRIP_BIN (scripts/line_round_trip.cpp, built) are both needed"
 B=$1; RT=$2; M=${3:-60}; OUT=${4:-fast_mode_gos}; LIMIT=${5:-160}
+for f in "$B" "$RT"; do [ -x "$f" ] || usage "$f is not an executable file"; done
+[[ "$M" =~ ^[1-9][0-9]*$ ]] || usage "MINUTES $M is not a whole number >= 1"
+[[ "$LIMIT" =~ ^[1-9][0-9]*$ ]] || usage "LIMIT $LIMIT is not a whole number of ns >= 1"
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$OUT"
 deadline=$(( $(date +%s) + 60 * M )); n=0
