@@ -11,11 +11,10 @@ check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
   out=$("$@" 2>&1)
   local got=$?
   if [ "$got" -ne "$want" ] || ! grep -qE "$pattern" <<<"$out"; then
-    echo "FAIL $name: exit $got (want $want); output:"
+    bad "$name: exit $got (want $want); output:"
     echo "$out" | tail -5
-    fail=$((fail + 1))
   else
-    pass=$((pass + 1))
+    ok
   fi
 }
 
@@ -23,7 +22,7 @@ check() {  # check NAME EXPECTED_EXIT PATTERN -- command...
 printf '[species.a]\ndiameter = 1.0\narea_share = 1.0\n[avalanche]\n[material]\nrestitution = 2.0\n' >"$work/bad.toml"
 check bad_range 1 'bad.toml: material.restitution: value 2 is out of the allowed range \[0.01, 1\]' -- \
   "$bin" run "$work/bad.toml" --out "$work/bad" -q
-[ -e "$work/bad/summary.json" ] && { echo "FAIL bad_range wrote a summary"; fail=$((fail + 1)); }
+[ -e "$work/bad/summary.json" ] && bad "bad_range wrote a summary"
 check bad_set 1 'contact.normal_model: "hooke" is not one of' -- \
   "$bin" run --out "$work/bad2" -q --set contact.normal_model=hooke
 check missing_file 2 'scene' -- "$bin" run "$work/nope.toml" --out "$work/x"
@@ -33,7 +32,7 @@ check no_out 2 'out' -- "$bin" run
 cp "$src/tests/data/two_discs.toml" "$work/two.toml"
 check explicit 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/two" -q --threads 1
 for f in summary.json timeseries.csv scene.resolved.toml checkpoint.bin; do
-  [ -s "$work/two/$f" ] || { echo "FAIL explicit: $f missing"; fail=$((fail + 1)); }
+  [ -s "$work/two/$f" ] || bad "explicit: $f missing"
 done
 # Threads bound by the user (OMP_PROC_BIND, OMP_PLACES) keep a core each: runout's own restart
 # (for shorter OpenMP spins) must not inherit the one CPU libgomp pinned its first thread to.
@@ -43,8 +42,8 @@ if [ "$(nproc)" -ge 2 ]; then
     places=$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$bind" OMP_DISPLAY_AFFINITY=true \
       "$bin" run "$work/two.toml" --out "$work/bound" -q --threads 2 --overwrite 2>&1 |
       awk '/^level 1 thread/ { seen[$NF] = 1 } END { print length(seen) }')
-    if [ "$places" -ge 2 ]; then pass=$((pass + 1)); else
-      echo "FAIL bound_threads: with $bind the two threads shared $places place(s)"; fail=$((fail + 1)); fi
+    if [ "$places" -ge 2 ]; then ok; else
+      bad "bound_threads: with $bind the two threads shared $places place(s)"; fi
   done
 fi
 # A thread limit below --threads (OMP_THREAD_LIMIT) gives a smaller team: the run still
@@ -52,17 +51,17 @@ fi
 check thread_limit 0 'mu_global' -- env OMP_THREAD_LIMIT=1 "$bin" run "$work/two.toml" --out "$work/limited" -q --threads 2
 a=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two/summary.json")
 b=$(grep -E '"(H_cm|L_cm|steps)"' "$work/limited/summary.json" 2>/dev/null)
-[ "$a" = "$b" ] || { echo "FAIL thread_limit: summary differs from one thread's"; fail=$((fail + 1)); }
+[ "$a" = "$b" ] || bad "thread_limit: summary differs from one thread's"
 # The resolved scene runs again to the same summary numbers.
 check resolved 0 'mu_global' -- "$bin" run "$work/two/scene.resolved.toml" --out "$work/two_again" -q --threads 2
 a=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two/summary.json")
 b=$(grep -E '"(H_cm|L_cm|steps)"' "$work/two_again/summary.json")
-[ "$a" = "$b" ] || { echo "FAIL resolved: summaries differ"; fail=$((fail + 1)); }
+[ "$a" = "$b" ] || bad "resolved: summaries differ"
 
 # Dumps: LAMMPS dump custom frames.
 check dump 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/dump" -q --dump-every 1
 grep -q 'ITEM: ATOMS id type x y z radius vx vy vz omegaz' "$work"/dump/dump/frame.000000000.lammpstrj ||
-  { echo "FAIL dump: no frame 0"; fail=$((fail + 1)); }
+  bad "dump: no frame 0"
 
 # Resume: a run stopped early and resumed matches the run made in one go.
 check oneshot 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/one" -q --set output.checkpoint_every=1
@@ -70,7 +69,7 @@ check first_half 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/res" 
 check second_half 0 'resuming' -- "$bin" run "$work/two.toml" --out "$work/res" --resume
 a=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/one/summary.json")
 b=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/res/summary.json")
-[ "$a" = "$b" ] || { echo "FAIL resume: summaries differ"; echo "$a"; echo "$b"; fail=$((fail + 1)); }
+[ "$a" = "$b" ] || { bad "resume: summaries differ"; echo "$a"; echo "$b"; }
 
 # An avalanche pile reports its preparation, settled afresh or read from the cache (its report
 # is kept beside the cached pile); an explicit scene has none.
@@ -79,9 +78,9 @@ check pile_cached 0 'settled pile from cache' -- "$bin" run --out "$work/pile2" 
 a=$(grep -A6 '"preparation"' "$work/pile1/summary.json")
 b=$(grep -A6 '"preparation"' "$work/pile2/summary.json")
 { grep -q '"ek_over_ep_undamped"' <<<"$a" && [ "$a" = "$b" ]; } ||
-  { echo "FAIL pile_report: fresh and cached preparation reports differ"; echo "$a"; echo "$b"; fail=$((fail + 1)); }
+  { bad "pile_report: fresh and cached preparation reports differ"; echo "$a"; echo "$b"; }
 grep -q '"preparation": null' "$work/two/summary.json" ||
-  { echo "FAIL explicit_report: an explicit scene reports a preparation"; fail=$((fail + 1)); }
+  bad "explicit_report: an explicit scene reports a preparation"
 printf '[species.disc]\ndiameter = 0.5\n[[walls]]\npoints = [[-5.0, 0.0], [5.0, 0.0]]\n[[particles]]\nx = 0.0\ny = 0.25\n' >"$work/noside.toml"
 check wall_inside 1 'noside.toml: walls\[0\].inside: is required' -- "$bin" run "$work/noside.toml" --out "$work/noside" -q
 
@@ -111,18 +110,18 @@ check bench_ceiling_halo_negative 2 'ceiling-halo: Value -1 not in range' -- "$b
 "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3 >"$work/probes.txt" 2>/dev/null
 for probe in line_round_trip arithmetic_pair_speedup; do
   if ! grep -q "^${probe}_reads: 5$" "$work/probes.txt"; then
-    echo "FAIL bench_${probe}_reads: $(grep "^${probe}_reads" "$work/probes.txt")"; fail=$((fail + 1))
-  else pass=$((pass + 1)); fi
+    bad "bench_${probe}_reads: $(grep "^${probe}_reads" "$work/probes.txt")"
+  else ok; fi
 done
 for probe in line_round_trip_ns arithmetic_pair_speedup; do
   spread=$(sed -n "s/^${probe}_\(min\|median\|max\): //p" "$work/probes.txt" | tr '\n' ' ')
   if ! awk -v t="$spread" 'BEGIN { n = split(t, v, " "); exit !(n == 3 && v[1] > 0 && v[1] <= v[2] && v[2] <= v[3]) }'; then
-    echo "FAIL bench_${probe}_order: min, median, max = '$spread'"; fail=$((fail + 1))
-  else pass=$((pass + 1)); fi
+    bad "bench_${probe}_order: min, median, max = '$spread'"
+  else ok; fi
 done
 if "$bin" bench --scene "$work/two.toml" --steps 10 --threads 1 2>/dev/null | grep -q 'line_round_trip\|arithmetic_pair'; then
-  echo "FAIL bench_probes_one_thread: printed at one thread"; fail=$((fail + 1))
-else pass=$((pass + 1)); fi
+  bad "bench_probes_one_thread: printed at one thread"
+else ok; fi
 # Two threads held to one CPU take turns: their arithmetic together takes twice one's (about 1,
 # where two cores give about 2; the median of 11 reads, and this test runs alone: CMakeLists),
 # and the round trip, passed at each switch, stays short (it spun a whole time slice a trip
@@ -132,8 +131,8 @@ if command -v taskset >/dev/null; then
   timeout 60 taskset -c "$cpu" "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 1 >"$work/one_cpu.txt" 2>/dev/null
   one_cpu=$(sed -n 's/^arithmetic_pair_speedup_median: //p' "$work/one_cpu.txt")
   if ! awk -v x="$one_cpu" 'BEGIN { exit !(x != "" && x > 0.7 && x < 1.4) }'; then
-    echo "FAIL bench_pair_speedup_one_cpu: '$one_cpu', not about 1"; fail=$((fail + 1))
-  else pass=$((pass + 1)); fi
+    bad "bench_pair_speedup_one_cpu: '$one_cpu', not about 1"
+  else ok; fi
 else
   echo "SKIP bench_pair_speedup_one_cpu: no taskset"
 fi
@@ -141,7 +140,7 @@ fi
 # module: the steps add up to --steps, each speed-up is its turn's seconds' ratio, and each turn's
 # round trip and arithmetic after are the next turn's before. A missing folder is refused before any work.
 check bench_turn_log 0 'speedup: ' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3 --turn-log "$work/turns.csv"
-/usr/bin/python3 - "$work/turns.csv" <<'PY' || { echo "FAIL bench_turn_log_rows"; fail=$((fail + 1)); }
+/usr/bin/python3 - "$work/turns.csv" <<'PY' || bad "bench_turn_log_rows"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 assert [int(r["steps"]) for r in rows] == [3, 3, 3, 1], rows
@@ -156,7 +155,7 @@ assert all(r["ceiling_alone_seconds"] == r["ceiling_lockstep_seconds"] == r["cei
 PY
 # With --ceiling the log also holds each turn's copies: alone over lockstep is the printed ratio.
 check bench_turn_log_ceiling 0 'ceiling_lockstep_speedup: ' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --ceiling --turn-steps 5 --turn-log "$work/turns_ceiling.csv"
-/usr/bin/python3 - "$work/turns_ceiling.csv" <<'PY' || { echo "FAIL bench_turn_log_ceiling_rows"; fail=$((fail + 1)); }
+/usr/bin/python3 - "$work/turns_ceiling.csv" <<'PY' || bad "bench_turn_log_ceiling_rows"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 assert [int(r["steps"]) for r in rows] == [5, 5], rows
@@ -187,11 +186,10 @@ printf 'a,b\n1,2\n' >"$work/not_a_log.csv"
 check turn_log_plot_bad_file 1 'not_a_log.csv:2: not a row of runout bench --turn-log' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/not_a_log.csv"
 # It draws the bench's own log as a PNG.
 check turn_log_plot_draws 0 'drawn: ' -- /usr/bin/python3 "$src/scripts/turn_log_plot.py" "$work/turns.csv" --out "$work/turns.png"
-/usr/bin/python3 -c "import sys; sys.exit(open(sys.argv[1], 'rb').read(8) != b'\x89PNG\r\n\x1a\n')" "$work/turns.png" || { echo "FAIL turn_log_plot_png"; fail=$((fail + 1)); }
+/usr/bin/python3 -c "import sys; sys.exit(open(sys.argv[1], 'rb').read(8) != b'\x89PNG\r\n\x1a\n')" "$work/turns.png" || bad "turn_log_plot_png"
 check bench_turn_log_folder 2 'turn-log: folder .*/nowhere does not exist' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-log "$work/nowhere/turns.csv"
 check bench_turn_log_needs_against 2 'turn-log requires --against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --turn-log "$work/t.csv"
 
-# The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 # scripts/thread_scaling.sh: three rounds on the two discs; its rounds by round trip must be
 # the rounds' own round trips classed here (fast < 250 ns, slow > 400 ns), and the last line
 # the ratio of the medians.
@@ -200,31 +198,32 @@ if [ "$(grep -c '^round [0-9]: ' <<<"$scaling")" = 3 ] && grep -qE '^two/one: [0
   [ "$(awk '/^round /{for (i = 1; i < NF; ++i) if ($i == "trip") t = $(i + 1); c = t < 250 ? "fast" : t > 400 ? "slow" : "between"; n[c]++}
             END {printf "%d %d %d", n["fast"], n["slow"], n["between"]}' <<<"$scaling")" = \
     "$(sed -n 's/^rounds with the round trip [^:]*: \([0-9]*\).*/\1/p' <<<"$scaling" | tr '\n' ' ' | sed 's/ $//')" ]; then
-  pass=$((pass + 1))
+  ok
 else
-  echo "FAIL thread_scaling_states:"; echo "$scaling" | tail -6; fail=$((fail + 1))
+  bad "thread_scaling_states:"; echo "$scaling" | tail -6
 fi
 check thread_scaling_no_bin 2 'BIN \(the runout binary\) is missing' -- "$src/scripts/thread_scaling.sh"
 check thread_scaling_bad_rounds 2 'ROUNDS 0 is not a whole number >= 1' -- "$src/scripts/thread_scaling.sh" "$bin" 0 10
 check thread_scaling_bench_fails 1 'bench --threads 1 failed:$' -- "$src/scripts/thread_scaling.sh" "$bin" 1 10 --scene "$work/nope.toml"
 check thread_scaling_bench_says_why 1 'File does not exist: .*nope.toml' -- "$src/scripts/thread_scaling.sh" "$bin" 1 10 --scene "$work/nope.toml"
+# The accuracy study: every variant runs (or is reported as failed) and the table is whole.
 check study 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --set output.end_time=1.0
-[ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || { echo "FAIL study: study.csv should have 11 rows"; fail=$((fail + 1)); }
-[ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || { echo "FAIL study: runs.csv should have 11 x 2 rows"; fail=$((fail + 1)); }
+[ "$(wc -l <"$work/study/study.csv")" -eq 12 ] || bad "study: study.csv should have 11 rows"
+[ "$(wc -l <"$work/study/runs.csv")" -eq 23 ] || bad "study: runs.csv should have 11 x 2 rows"
 # The plot is matplotlib's (scripts/runout_plot.py), PNG and PDF.
-[ -s "$work/study/study.png" ] && [ -s "$work/study/study.pdf" ] || { echo "FAIL study: no plot"; fail=$((fail + 1)); }
+[ -s "$work/study/study.png" ] && [ -s "$work/study/study.pdf" ] || bad "study: no plot"
 # Resuming a finished study reruns nothing: the same rows, the same table.
 cp "$work/study/runs.csv" "$work/runs.before"
 check study-resume 0 'reference' -- "$bin" study accuracy "$work/two.toml" --out "$work/study" --seeds 2 --resume --set output.end_time=1.0
-cmp -s "$work/runs.before" "$work/study/runs.csv" || { echo "FAIL study-resume: runs.csv changed"; fail=$((fail + 1)); }
+cmp -s "$work/runs.before" "$work/study/runs.csv" || bad "study-resume: runs.csv changed"
 
 # Pictures come from a module loaded on demand: the binary itself links no rendering library,
 # a run without picture options works with no module at all, and one with them says what is
 # missing instead of drawing nothing.
 if ldd "$bin" | grep -Ei 'osmesa|llvm|avcodec|avformat|swscale|libpng|freetype'; then
-  echo "FAIL no_render_libs: the runout binary links a rendering library"; fail=$((fail + 1))
+  bad "no_render_libs: the runout binary links a rendering library"
 else
-  pass=$((pass + 1))
+  ok
 fi
 check no_module_plain 0 'mu_global' -- env RUNOUT_PICTURES_MODULE="$work/none.so" "$bin" run "$work/two.toml" --out "$work/plain" -q
 check no_module_snapshots 1 'picture module runout_pictures.so was not found' -- \
@@ -232,14 +231,14 @@ check no_module_snapshots 1 'picture module runout_pictures.so was not found' --
 if [ -e "$(dirname "$bin")/runout_pictures.so" ]; then
   check snapshots 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/pic" -q --snapshots 0,2 --size 320x180
   for f in snapshot_t0.png snapshot_t2.png; do
-    [ -s "$work/pic/$f" ] || { echo "FAIL snapshots: $f missing"; fail=$((fail + 1)); }
+    [ -s "$work/pic/$f" ] || bad "snapshots: $f missing"
   done
   check compare_same 0 'match: yes' -- "$bin" compare "$work/pic/snapshot_t0.png" "$work/pic/snapshot_t0.png"
   # A run asked to end with its last snapshot stops there (t* = 2 of the scene's 5).
   check end_at_snapshot 0 'mu_global' -- "$bin" run "$work/two.toml" --out "$work/endsnap" -q --snapshots 0,2 \
     --size 320x180 --end-at-last-snapshot
   awk -F': ' '/"t_star_end"/ { t = $2 + 0; ok = (t > 1.9 && t < 2.1) } END { exit !ok }' "$work/endsnap/summary.json" ||
-    { echo "FAIL end_at_snapshot: did not stop at t* = 2"; grep t_star_end "$work/endsnap/summary.json"; fail=$((fail + 1)); }
+    { bad "end_at_snapshot: did not stop at t* = 2"; grep t_star_end "$work/endsnap/summary.json"; }
 fi
 check end_needs_snapshots 2 'needs --snapshots' -- "$bin" run "$work/two.toml" --out "$work/endsnap2" -q --end-at-last-snapshot
 
@@ -248,7 +247,7 @@ check end_needs_snapshots 2 'needs --snapshots' -- "$bin" run "$work/two.toml" -
 for case in "8_33_25 1.062e8 4.88e-5" "4_40 5.10e7 7.05e-5" "3_60 3.82e7 8.14e-5" "2_50 2.55e7 9.96e-5"; do
   set -- $case
   "$bin" derive "$src/examples/thesis_$1.toml" --json >"$work/derive.json" &&
-  /usr/bin/python3 - "$work/derive.json" "$2" "$3" <<'PY' || { echo "FAIL derive thesis_$1"; fail=$((fail + 1)); }
+  /usr/bin/python3 - "$work/derive.json" "$2" "$3" <<'PY' || bad "derive thesis_$1"
 import json, sys
 j = json.load(open(sys.argv[1]))
 row = next(r for r in j["contacts"] if r["pair"] == "small among small")
@@ -266,9 +265,9 @@ check derive_bad_key 1 'contact.normal_model' -- "$bin" derive --set contact.nor
 printf '[species.disc]\ndiameter = 1.0\narea_share = 1.0\n[avalanche]\n' >"$work/defaults.toml"
 check keys_table 0 'dt_fraction = 0.1 +# number in \[0.0001, 1\]' -- cat "$work/keys.toml"
 if [ "$("$bin" derive "$work/keys.toml" 2>&1 | sed 1d)" = "$("$bin" derive "$work/defaults.toml" 2>&1 | sed 1d)" ]; then
-  pass=$((pass + 1))
+  ok
 else
-  echo "FAIL keys_as_scene: the listed defaults derive another setup"; fail=$((fail + 1))
+  bad "keys_as_scene: the listed defaults derive another setup"
 fi
 
 # A tiny polydisperse pile (lognormal by area in three classes) runs to rest; its summary
@@ -294,7 +293,7 @@ hold = 2.0
 max_time = 300.0
 EOF
 check polydisperse 0 'mu_global' -- "$bin" run "$work/poly.toml" --out "$work/poly" -q --states 0,10
-/usr/bin/python3 - "$work/poly" <<'PY' || { echo "FAIL polydisperse summary"; fail=$((fail + 1)); }
+/usr/bin/python3 - "$work/poly" <<'PY' || bad "polydisperse summary"
 import json, sys, tomllib
 d = sys.argv[1]
 j = json.load(open(d + "/summary.json"))

@@ -30,14 +30,12 @@ for case in "$src"/tests/malformed/*.case; do
   got=$?
   [ -n "${SHOW:-}" ] && echo "$name: $(cat "$work/stderr")"
   if [ "$got" -ne "$want" ] || ! grep -qF -- "$error" "$work/stderr"; then
-    echo "FAIL $name: exit $got (want $want), stderr:"; sed 's/^/    /' "$work/stderr" | head -5
+    bad "$name: exit $got (want $want), stderr:"; sed 's/^/    /' "$work/stderr" | head -5
     echo "    want the text: $error"
-    fail=$((fail + 1))
   elif [ "$out" = "$work/out_$name" ] && [ -e "$out" ]; then
-    echo "FAIL $name: refused, but $out was created"
-    fail=$((fail + 1))
+    bad "$name: refused, but $out was created"
   else
-    pass=$((pass + 1))
+    ok
   fi
 done
 finish
