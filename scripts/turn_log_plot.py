@@ -16,6 +16,7 @@ has put the two threads on one core's hyperthreads, where nothing can gain ×1.8
 import argparse
 import csv
 import math
+import signal
 import statistics
 import sys
 from typing import NamedTuple
@@ -187,4 +188,6 @@ def main():
 
 
 if __name__ == "__main__":
+    # Piped into head, end quietly as other commands do, not with a BrokenPipeError.
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     main()
