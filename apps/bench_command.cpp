@@ -31,7 +31,7 @@ namespace {
 // same stretch of the flow as the turn of `world` that follows.
 // With a halo (--ceiling-halo), a fourth mode: side by side, each copy after its step reading
 // `halo` discs' positions and velocities that the next copy's thread wrote in that step, as a
-// step's threads read the discs their rows reach in the next block (docs/performance.md, issue
+// step's threads read the discs their rows reach in the next block (docs/performance_log.md, issue
 // 11 thirty-seventh session). Its two meetings a step (after the steps; after the reads, before
 // the next step writes again) keep the copies race-free; with `halo` 0 it times them alone.
 struct Ceiling {

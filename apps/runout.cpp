@@ -17,7 +17,7 @@ namespace {
 // GCC's OpenMP runtime spins about 300,000 times at each join before it sleeps. With another
 // program on the cores, a 2-thread run then waits for a parked thread at every step: two
 // 2-thread benches at once ran 0.5-0.7 M particle-steps/s each, against 95 M alone. With 2,000
-// spins they ran 16 M each, and alone 95.7 M against 95.2 M (docs/performance.md). libgomp
+// spins they ran 16 M each, and alone 95.7 M against 95.2 M (docs/performance_log.md). libgomp
 // reads the setting when it loads, before main, so runout sets it and starts itself once more,
 // unless the user chose the spins or a wait policy. If that start fails, it goes on as it is.
 // Nor where the user binds threads: libgomp has then already pinned this first thread to the

@@ -3,13 +3,13 @@
 // them. Each "step" every thread runs a kick–drift-like update over its half of F/2 pairs of
 // arrays and the two meet at a barrier. No line is written by both threads; the block boundary
 // sits on a cache line boundary. What differs is only what the cores' prefetchers fetch beyond
-// the end of the half they stream (docs/performance.md, issue 11, nineteenth session). The
+// the end of the half they stream (docs/performance_log.md, issue 11, nineteenth session). The
 // earlier half streamed by one thread while the other only meets it at the barrier is the floor.
 //
 //   g++ -O3 -march=native -fopenmp scripts/block_boundary_bench.cpp -o /tmp/block_boundary_bench
 //   GOMP_SPINCOUNT=2000 /tmp/block_boundary_bench [ROUNDS=3] [STEPS=20000] [gaps]
 // With `gaps`, the adjacent layout with 0 to 512 doubles between the halves instead: how far
-// the prefetchers run on (docs/performance.md, issue 11, thirty-fifth session).
+// the prefetchers run on (docs/performance_log.md, issue 11, thirty-fifth session).
 #include <omp.h>
 
 #include <chrono>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Waits for the host's fast mode and measures two threads against one the moment it comes.
 # On this VM kind the two vCPUs' cache-line round trip swings between ~100 ns (fast) and
-# ~450 ns (slow), and the fast mode comes for seconds at a time (docs/performance.md, issue 11
+# ~450 ns (slow), and the fast mode comes for seconds at a time (docs/performance_log.md, issue 11
 # thirty-first session). This reads the round trip about once a second; when one is under
 # LIMIT ns it runs the in-run comparison first (issue 11's figure, and the shortest: the
 # fast mode often ends within a minute of load), then the nine-round thread_scaling go and the

@@ -1,7 +1,7 @@
 // What a step's fork and join cost beside a team kept across steps, with the shape of runout's
 // two-thread step: a short serial part (1 us) and ~35 us of work per thread. Prints, per round,
 // the time a step takes beyond the work: one `omp parallel` per step against one region for all
-// steps that meets at two barriers a step (docs/performance.md, issue 11, twentieth session).
+// steps that meets at two barriers a step (docs/performance_log.md, issue 11, twentieth session).
 // A measuring tool, not part of the product:
 //   g++ -O2 -fopenmp scripts/fork_join_bench.cpp -o /tmp/fork_join_bench
 //   GOMP_SPINCOUNT=2000 /tmp/fork_join_bench [ROUNDS=3]

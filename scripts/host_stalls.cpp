@@ -8,7 +8,7 @@
 // the time in which either is interrupted. Run it with one thread and with two, alternated:
 // what two busy vCPUs lose beyond one, a step whose threads meet every pass cannot win back.
 // (Pinning is best effort: on a machine with one CPU the threads run unpinned.)
-// docs/performance.md, issue 11, twenty-ninth session.
+// docs/performance_log.md, issue 11, twenty-ninth session.
 //   g++ -O2 -pthread scripts/host_stalls.cpp -o /tmp/host_stalls
 //   /tmp/host_stalls [THREADS=2] [SECONDS=2]
 #include <pthread.h>

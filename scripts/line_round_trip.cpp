@@ -1,5 +1,5 @@
 // How long one cache line takes to go from CPU 0 to CPU 1 and back: two threads, pinned, pass
-// a counter back and forth. Where two vCPUs sit on the host decides it (docs/performance.md,
+// a counter back and forth. Where two vCPUs sit on the host decides it (docs/performance_log.md,
 // issue 11 sixteenth session: ~55 ns in the host's fast mode, ~330 ns in its slow one), and
 // a two-thread runout step moves a few hundred lines between its threads (the block boundary).
 //   g++ -O2 -pthread scripts/line_round_trip.cpp -o /tmp/line_round_trip

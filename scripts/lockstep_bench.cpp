@@ -3,7 +3,7 @@
 // an OpenMP parallel region (as runout's step does), alternating in rounds. No data crosses
 // between the threads, so whatever the ratio falls short of 2 is the host's (the hypervisor
 // taking a vCPU away, one vCPU slower than the other) plus the fork and join.
-// docs/performance.md, issue 11 twelfth session.
+// docs/performance_log.md, issue 11 twelfth session.
 // KIND picks the arithmetic: `chains` (two dependent multiply-add chains: bound by latency, so
 // it barely notices a sibling hyperthread of the host running beside it), `ports` (sixteen
 // independent chains: bound by the core's execution ports, as runout's kernels are) or

@@ -1,6 +1,6 @@
 // What one step's thread synchronisation costs on this machine: an empty OpenMP parallel
 // region (fork + join), an OpenMP barrier inside one region, and a two-thread ping-pong on one
-// atomic (the floor any barrier pays). docs/performance.md, issue 11 sixth session.
+// atomic (the floor any barrier pays). docs/performance_log.md, issue 11 sixth session.
 //   g++ -O2 -fopenmp -pthread scripts/omp_sync_bench.cpp -o /tmp/omp_sync && /tmp/omp_sync
 // With LLVM's runtime instead of GCC's (Debian libomp-14-dev):
 //   g++ -O2 -fopenmp -c scripts/omp_sync_bench.cpp -o /tmp/o.o &&

@@ -1,7 +1,7 @@
 // What one system call costs on this machine: a futex wake with no one waiting (what
 // libgomp calls at every fork, join and barrier), sched_yield (what a two-thread runout step's
 // wait does after its spin) and getppid (the bare entry and exit). On the VMs of
-// docs/performance.md (issue 11, twenty-eighth session) each took ~1.2-1.8 us, so a wait
+// docs/performance_log.md (issue 11, twenty-eighth session) each took ~1.2-1.8 us, so a wait
 // that yields notices its flag that much later. Run it on
 // an otherwise idle machine: with another task runnable, sched_yield also times that task.
 //   g++ -O2 scripts/syscall_cost.cpp -o /tmp/syscall_cost

@@ -60,7 +60,7 @@ void LoadBalance::place() {
   // Moving an end costs more than the window it gains: the hand-off is found again (~11 us)
   // and the next pass is 3-6 us slower while the moved discs' lines change cores, against a
   // window's share of a step's work (32 of the bench pile's 3,500 discs, ~0.7 us of a ~75 us
-  // step; docs/performance.md, eighteenth session). The measured speeds jitter by about a
+  // step; docs/performance_log.md, eighteenth session). The measured speeds jitter by about a
   // window from one period to the next, so ends that would each move by a window at most stay.
   const bool jitter = before.size() == bounds_.size() && before.back() == bounds_.back() &&
                       std::equal(before.begin(), before.end(), bounds_.begin(), [](std::int64_t a, std::int64_t b) {

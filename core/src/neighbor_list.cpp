@@ -124,7 +124,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
 
   // One region for the whole rebuild, each stage's threads meeting at a barrier: a region a
   // stage cost a fork and a join each, and the serial steps between them let the other
-  // threads fall asleep (docs/performance.md, issue 11, twenty-fourth session).
+  // threads fall asleep (docs/performance_log.md, issue 11, twenty-fourth session).
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), T = omp_get_num_threads();
@@ -135,7 +135,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
     // One thread bins the discs into cells while the others take chunks of the walls, then
     // it takes chunks too. A binning by every thread (counts per cell and thread) took 40 us
     // at two threads against ~25 us for one: an inclined flow's box holds ~4 cells a disc
-    // (docs/performance.md, issue 11, twenty-fourth session).
+    // (docs/performance_log.md, issue 11, twenty-fourth session).
     if (t == 0 && n > 0) {
       try {
         grid_.build(p, skin);
@@ -200,7 +200,7 @@ void NeighborSearch::rebuild(const Particles& p, const std::vector<Segment>& seg
       // its own search and the few other threads found across its ends (`foreign`). Taken as
       // chunks as threads came free, every row was written by both threads, their counts and
       // cursors crossed between the cores, and a row's lines then went back to its thread in
-      // the step (docs/performance.md, issue 11, twenty-fourth session).
+      // the step (docs/performance_log.md, issue 11, twenty-fourth session).
       const std::int32_t ncy = g.ncy;
       auto& out = thread_j_[t];  // (lower, higher) index pairs of own rows, flattened
       auto& foreign = thread_foreign_[t];  // those of other threads' rows

@@ -97,7 +97,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   // on cache lines of its own and goes back into the World once the region ends. Written
   // every pass into World members and this frame's locals, it shared lines with what the
   // other threads read every pass (the discs' array pointers, the closures below,
-  // max_growth_): such a line may cross the cores twice a pass (docs/performance.md, issue 11
+  // max_growth_): such a line may cross the cores twice a pass (docs/performance_log.md, issue 11
   // thirtieth session).
   struct alignas(64) Kept {
     PassSums last_sums;
@@ -197,7 +197,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // Thread t's sums, kick and drift: first (once the earlier threads' boundary pairs are
     // done) the discs their contacts reach, then the rest. The reached discs' lines, which the
     // earlier thread read, then come back to this core while the rest move, not while the
-    // pass's end waits for them (docs/performance.md, twenty-first session). The earlier
+    // pass's end waits for them (docs/performance_log.md, twenty-first session). The earlier
     // thread's crossing pushes are nearly always ready by now.
     auto wait_earlier = [&](int t, std::int64_t pass) {
       if (forces && t > 0 && ready_.flag[t - 1].pass.load(std::memory_order_acquire) == pass)

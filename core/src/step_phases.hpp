@@ -23,7 +23,7 @@ struct StepContext {
   // The contact model's parameter tables for pairs and for walls (ContactModel::Tables of
   // settings.contact's model, derive_laws), derived once with the World: derived at every
   // pass of every thread, they cost six allocations each time, ~0.5 us a pass and thread
-  // (docs/performance.md, issue 11, thirty-fifth session).
+  // (docs/performance_log.md, issue 11, thirty-fifth session).
   const LawTables& laws;
 };
 LawTables derive_laws(const ContactChoice& contact, const ContactTable& table);

@@ -70,7 +70,7 @@ void World::restore_history(const PairContacts& pairs, const WallContacts& walls
 // thread's contiguous block of discs is a stretch of the flow cut from the next by a straight
 // line across it: its neighbours mostly live in the same block (and cache), and the fewest pairs
 // and cache lines cross between the threads each step (columns one large diameter wide cut
-// part-way up a column, with twice the crossing lines; docs/performance.md, issue 11
+// part-way up a column, with twice the crossing lines; docs/performance_log.md, issue 11
 // twenty-ninth and thirty-fourth sessions). Contact history follows the discs. Done on a fixed
 // step cadence, so results stay bit-identical across thread counts and skins.
 void World::reorder_discs() {

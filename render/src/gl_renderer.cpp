@@ -157,7 +157,7 @@ Image& GlRenderer::draw(const View& view, const DiscBatch& discs,
   glClearColor(style.background.r / 255.0f * a, style.background.g / 255.0f * a,
                style.background.b / 255.0f * a, a);
   // A movie's frames share their view, walls and style; llvmpipe clears a whole 1280x720 frame
-  // in ~1 ms, most of it background that stays (docs/performance.md, issue 12, ninth session).
+  // in ~1 ms, most of it background that stays (docs/performance_log.md, issue 12, ninth session).
   const PixelRect now = disc_pixels(view, discs, width_, height_);
   const bool like_last = m.drawn && view == m.last_view && style == m.last_style && walls == m.last_walls &&
                          method_ == m.last_method;

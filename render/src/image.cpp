@@ -92,7 +92,7 @@ void filter_row(unsigned char* out, const std::uint8_t* row, const std::uint8_t*
 
 // The zlib stream (RFC 1950) of a frame's filtered rows, by ISA-L's igzip at level 1: on a
 // whole-domain frame (mostly background) 16x faster than zlib's level 1 + Z_RLE, for files
-// about a quarter larger (docs/performance.md, issue 12, ninth session). igzip writes the
+// about a quarter larger (docs/performance_log.md, issue 12, ninth session). igzip writes the
 // zlib header and the Adler-32 itself.
 std::string deflate_rows(const Image& image, int channels) {
   const std::size_t row_bytes = 1 + static_cast<std::size_t>(image.width) * channels;

@@ -40,7 +40,7 @@ struct VideoWriter::Impl {
   long next_pts = 0;
 
   // Frames the encoder is done with, refilled by write(): a frame a write, with no allocation
-  // and no fresh pages to fault in (3.7 MB at 1280x720; docs/performance.md, issue 12).
+  // and no fresh pages to fault in (3.7 MB at 1280x720; docs/performance_log.md, issue 12).
   std::mutex spare_mutex;
   std::vector<Image> spare;
 
@@ -163,8 +163,9 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, const V
     throw RenderError("video: cannot write " + path + ": " + av_error(r));
 
   // yuv420p (every movie but a lossless one) by libyuv's vectorised RGBA to I420: 0.2 ms a
-  // 1280x720 frame against libswscale's 2.4-3.4 ms on the encoder's thread (docs/performance.md,
-  // issue 12, ninth session). yuv444p (lossless) by libswscale with the same matrix.
+  // 1280x720 frame against libswscale's 2.4-3.4 ms on the encoder's thread
+  // (docs/performance_log.md, issue 12, ninth session). yuv444p (lossless) by libswscale with
+  // the same matrix.
   if (options.lossless) {
     m.sws = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, m.codec->pix_fmt, SWS_BILINEAR, nullptr,
                            nullptr, nullptr);

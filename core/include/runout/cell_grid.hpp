@@ -2,7 +2,7 @@
 // counting sort, each grid column's cells one run of places, the discs of a cell in index order.
 // Columns, not rows: the discs are numbered along x (World::reorder_discs), so a column's discs are
 // a narrow range of indices and the search reads fewer lines of their state (a rebuild ~25 us
-// faster at two threads in 8 of 8 alternated pairs; docs/performance.md, thirty-sixth session).
+// faster at two threads in 8 of 8 alternated pairs; docs/performance_log.md, thirty-sixth session).
 #pragma once
 
 #include <cstdint>

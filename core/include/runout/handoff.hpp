@@ -9,7 +9,7 @@
 // for it alone from the other core, rather than every line of the pushes array holding one
 // (118 crossing pairs on the bench pile: 118 doubles, ~15 lines an array, where the pushes in
 // place were spread over 37 measured lines). The copies hold
-// the same bits and each run keeps its order, so no sum changes (docs/performance.md, issue 11
+// the same bits and each run keeps its order, so no sum changes (docs/performance_log.md, issue 11
 // sixteenth session).
 #pragma once
 
@@ -24,14 +24,14 @@ namespace runout {
 // computed by one thread in one piece, so a thread's contacts end at a block end. A block is
 // then also how far a thread's contacts reach into the next thread's discs, whose state
 // crosses between the cores every step: small blocks keep that short (64 pairs rather than
-// 256 took ~1.2 us off a two-thread step; docs/performance.md, fifteenth session).
+// 256 took ~1.2 us off a two-thread step; docs/performance_log.md, fifteenth session).
 inline constexpr std::int64_t kPairLedgerBlock = 64;
 inline constexpr std::int64_t kWallLedgerBlock = 16;
 // Where a thread's contacts may end. Without the ledger nothing is summed in blocks: a
 // thread's pairs end at a cache line of pushes (8) and its wall contacts exactly at its
 // block's last disc. A wall block of 16 held the floor discs of ~15 later columns, so the
 // later thread's first ~370 discs waited for the earlier thread's flag, not ~170 (the bench
-// pile; docs/performance.md, twenty-second session).
+// pile; docs/performance_log.md, twenty-second session).
 struct ContactGrain {
   std::int64_t pairs = kPairLedgerBlock, walls = kWallLedgerBlock;
   bool operator==(const ContactGrain&) const = default;

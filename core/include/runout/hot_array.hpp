@@ -7,7 +7,7 @@
 // the other core is writing, and those lines cross between the cores every step. On pages of its
 // own, with a free page after it, an array's ends are out of the other core's reach. Each array
 // starts at its own offset within its first page (from the page's address), so the k-th
-// elements of a dozen arrays do not all fall in one L1 set (docs/performance.md, issue 11,
+// elements of a dozen arrays do not all fall in one L1 set (docs/performance_log.md, issue 11,
 // twentieth session).
 #pragma once
 

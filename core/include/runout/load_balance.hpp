@@ -1,7 +1,7 @@
 // Which discs each thread takes in a step (World::forces_and_motion). No result
 // depends on it: each contact's force and each disc's sum are the same bits whoever computes
 // them (world.hpp), so the blocks follow the threads' measured speed. On a shared machine one
-// core can run a third slower than the other for seconds at a time (docs/performance.md), and
+// core can run a third slower than the other for seconds at a time (docs/performance_log.md), and
 // blocks of equal estimated work would leave the faster thread waiting at every step.
 #pragma once
 
@@ -16,7 +16,7 @@ class LoadBalance {
  public:
   // What a block's work is counted in: the contacts of its rows (the force pass), its run
   // slots and lanes (the sums, kick and drift), or both (a whole step: a contact costs about
-  // six slots on the thesis pile, docs/performance.md).
+  // six slots on the thesis pile, docs/performance_log.md).
   enum class Work { contacts, sums, step };
   // Steps between two moves of the blocks' ends.
   static constexpr int kPeriod = 16;

@@ -21,7 +21,7 @@ class Observer {
   // and the physics' threads would be more than the process's cores, the physics steps with
   // fewer threads (at least one) until they are done: it is bit-identical at any thread count,
   // so only the speed changes, and a two-thread step loses less than a core's worth to a
-  // third thread (docs/performance.md, issue 12, tenth session).
+  // third thread (docs/performance_log.md, issue 12, tenth session).
   virtual int helper_cores() { return 0; }
 };
 
@@ -38,7 +38,7 @@ struct Schedule {
 // `threads` physics threads at once, so every core is free while the simulation waits. An
 // idle OpenMP team spins on its cores for milliseconds before it sleeps: a helper the
 // simulation waits for would otherwise get one core where the physics leaves two idle
-// (docs/performance.md, issue 12).
+// (docs/performance_log.md, issue 12).
 void wait_on_every_thread(int threads, const std::function<void()>& wait);
 // The cores this process may run on (its CPU affinity): a run with fewer physics threads
 // leaves its helpers a core of their own.

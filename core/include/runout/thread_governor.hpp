@@ -1,7 +1,7 @@
 // How many threads a run's physics uses while other programs share its cores. The threads of
 // a step meet twice (the handoff and OpenMP's join), so a step waits for whichever thread the
 // scheduler has parked: two 2-thread runs on two cores ran 15 M particle-steps/s each, where
-// one thread each would run near the 1-thread speed (docs/performance.md). The physics is
+// one thread each would run near the 1-thread speed (docs/performance_log.md). The physics is
 // bit-identical at any thread count, so the count can follow the cores the run actually gets.
 //
 // The signal is the process's own CPU time over a window of wall time: threads that are not

@@ -124,7 +124,7 @@ class World {
   void step() { advance(1); }
   // `steps` steps, as many of them as can be in one parallel region together: a region ends
   // only where the lists must be rebuilt or the blocks move (every LoadBalance::kPeriod
-  // steps), so the team is not started and joined at every step (docs/performance.md,
+  // steps), so the team is not started and joined at every step (docs/performance_log.md,
   // issue 11, twenty-first session). The same bits as `steps` calls of step().
   void advance(std::int64_t steps);
 
@@ -220,7 +220,7 @@ class World {
 
   // Each thread's accelerations of its block's discs in a pass of several threads
   // (phases::Accelerations), each on pages of its own: written into the discs' arrays, a
-  // thread's stream ran on into the next block's lines (docs/performance.md, issue 11,
+  // thread's stream ran on into the next block's lines (docs/performance_log.md, issue 11,
   // thirty-fifth session). Velocity Verlet keeps its accelerations in Particles between calls.
   struct BlockAccelerations {
     HotArray<double> x, y, angular;  // of discs first, first + 1, ... of the block

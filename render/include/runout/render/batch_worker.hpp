@@ -3,7 +3,7 @@
 // leaves them meanwhile (Observer::helper_cores), and after the run.
 // The helper runs at normal priority, so other processes cannot starve it: the SCHED_IDLE
 // helpers it replaces got no CPU while other programs kept every core busy (the 5 s quick
-// movie took 200 s; docs/performance.md, issue 12). The first error it raises is rethrown to
+// movie took 200 s; docs/performance_log.md, issue 12). The first error it raises is rethrown to
 // the producer.
 #pragma once
 
