@@ -2,8 +2,8 @@
 # One thread against two on the bench pile, alternating so the machine's drift hits both alike.
 # Usage: scripts/thread_scaling.sh BIN [ROUNDS=5] [STEPS=40000] [extra bench options...]
 # Prints each round's pair and the medians, the rounds' median two/one by the host's state (the
-# line round trip read by the two-thread bench: fast < 250 ns, slow > 400 ns, as
-# scripts/turn_log_plot.py splits turns); the last line is "two/one: R" (ratio of medians).
+# line round trip read by the two-thread bench, split at scripts/turn_log_plot.py's edges: fast
+# < 250 ns, slow > 400 ns); the last line is "two/one: R" (ratio of medians).
 # Each round also shows what the two-thread bench read of the host (medians of its reads): the
 # cache-line round trip between two threads (its fast and slow modes) and two threads' arithmetic
 # over one's (about 1 while the host keeps both threads on one core; docs/performance.md, issue 11).
@@ -32,14 +32,15 @@ for i in $(seq "$R"); do
   printf 'round %d: 1 thread %.3g, 2 threads %.3g particle-steps/s, two/one %.2f, line round trip %s ns, arithmetic x%s\n' \
     "$i" "$a" "$b" "$(/usr/bin/python3 -c "print($b/$a)")" "${trip:-?}" "${pair:-?}"
 done
-/usr/bin/python3 -c "
+PYTHONPATH="$(dirname "$0")" /usr/bin/python3 -c "
 import statistics as s
+from turn_log_plot import FAST_BELOW_NS as fast, SLOW_ABOVE_NS as slow
 a=[float(x) for x in '${one[*]}'.split()]; b=[float(x) for x in '${two[*]}'.split()]
 trip=[float(x) for x in '${trips[*]}'.split()]
 print(f'medians: 1 thread {s.median(a):.3g}, 2 threads {s.median(b):.3g} particle-steps/s')
 print(f'median of the rounds\' two/one: {s.median([y/x for x, y in zip(a, b)]):.2f}')
-for name, keep in (('fast (< 250 ns)', lambda t: t < 250), ('slow (> 400 ns)', lambda t: t > 400),
-                   ('between or not read', lambda t: not (t < 250 or t > 400))):
+for name, keep in ((f'fast (< {fast} ns)', lambda t: t < fast), (f'slow (> {slow} ns)', lambda t: t > slow),
+                   ('between or not read', lambda t: not (t < fast or t > slow))):
     r = [y / x for x, y, t in zip(a, b, trip) if keep(t)]
     print(f'rounds with the round trip {name}: {len(r)}' + (f', median two/one {s.median(r):.2f}' if r else ''))
 print(f'two/one: {s.median(b)/s.median(a):.2f}')"

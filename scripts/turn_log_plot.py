@@ -61,12 +61,19 @@ def read_turns(paths):
     return turns
 
 
+# The host's line round trip, in ns, under which a turn met its fast state and over which its
+# slow one (docs/performance.md, "Two threads"); scripts/thread_scaling.sh splits its rounds by
+# the same edges.
+FAST_BELOW_NS = 250
+SLOW_ABOVE_NS = 400
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("logs", nargs="+", help="CSV files written by runout bench --turn-log")
     ap.add_argument("--out", help="draw the turns to this PNG, PDF or SVG")
-    ap.add_argument("--fast-below", type=float, default=250, help="ns (default 250)")
-    ap.add_argument("--slow-above", type=float, default=400, help="ns (default 400)")
+    ap.add_argument("--fast-below", type=float, default=FAST_BELOW_NS, help=f"ns (default {FAST_BELOW_NS})")
+    ap.add_argument("--slow-above", type=float, default=SLOW_ABOVE_NS, help=f"ns (default {SLOW_ABOVE_NS})")
     ap.add_argument("--two-cores", type=float, default=1.8, help="arithmetic pair speed-up (default 1.8)")
     ap.add_argument("--one-core", type=float, default=1.3, help="arithmetic pair speed-up (default 1.3)")
     ap.add_argument("--target", type=float, default=1.85, help="speed-up line to draw (default 1.85)")
