@@ -15,7 +15,9 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 median() { printf '%s\n' "$@" | sort -n | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 # $EPOCHREALTIME, not $(date): a second date process was timed with the command. The fork of
-# the shell that starts the command is still timed with it.
+# the shell that starts the command is still timed with it. Bash writes $EPOCHREALTIME with the
+# locale's decimal mark, which bc reads only as a point: hence C.
+export LC_ALL=C
 seconds() { local s=$EPOCHREALTIME; "$@" >/dev/null 2>&1; echo "$EPOCHREALTIME - $s" | bc; }
 
 echo "== friction (bench, 1 thread)"
