@@ -1,7 +1,7 @@
 // A pass of forces and motion over the threads' blocks of discs, and the verdict on each
 // (World::forces_and_motion, world.hpp): one OpenMP region for as many steps as the lists and
 // the blocks allow, the crossing rows handed to the later threads (handoff.hpp), the next
-// step's forces started before the verdict where that is safe (docs/architecture.md).
+// step's forces started before the verdict where that is safe (docs/internals.md).
 #include <omp.h>
 
 #include <thread>
