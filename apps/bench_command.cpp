@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -18,6 +17,7 @@
 #include "runout/io/files.hpp"
 #include "runout/io/scene_file.hpp"
 #include "runout/setup.hpp"
+#include "runout/timing.hpp"
 
 namespace runout::app {
 
@@ -57,7 +57,6 @@ double read_halo(const Particles& p, long long halo) {
 }
 
 Ceiling ceiling_turn(const World& world, int count, long long steps, long long halo) {
-  using Clock = std::chrono::steady_clock;
   std::vector<World> copies;
   auto fresh_copies = [&] {
     copies.assign(static_cast<std::size_t>(count), world);
@@ -94,14 +93,14 @@ Ceiling ceiling_turn(const World& world, int count, long long steps, long long h
       sums[static_cast<std::size_t>(me)] = sum;
     }
     if (failed) std::rethrow_exception(failed);
-    return std::chrono::duration<double>(Clock::now() - start).count();
+    return seconds_since(start);
   };
   Ceiling turn;
   turn.steps = steps;
   fresh_copies();
   const auto start = Clock::now();
   for (World& c : copies) c.advance(steps);
-  turn.alone = std::chrono::duration<double>(Clock::now() - start).count();
+  turn.alone = seconds_since(start);
   turn.apart = side_by_side(false, -1);
   turn.lockstep = side_by_side(true, -1);
   if (halo >= 0) turn.halo = side_by_side(true, halo);
@@ -154,14 +153,13 @@ int bench_command(const BenchOptions& o) {
   mine.threads = o.threads;
   mine.ahead = kAheadNames.at(o.ahead);
   other.threads = o.against_threads;
-  using Clock = std::chrono::steady_clock;
   auto run_turn = [&](Tally& tally, long long steps) {
     world.set_threads(tally.threads);
     world.set_ahead(tally.ahead);
     const StepProfile before = world.profile();
     const auto t0 = Clock::now();
     world.advance(steps);
-    tally.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    tally.seconds += seconds_since(t0);
     tally.steps += steps;
     const StepProfile& after = world.profile();
     tally.profile.contact_forces += after.contact_forces - before.contact_forces;

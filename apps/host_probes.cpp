@@ -6,17 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
-#include <thread>
+
+#include "runout/timing.hpp"
 
 namespace runout::app {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Independent multiply–add chains, enough of them to keep a core's floating-point pipes full
 // rather than wait on one chain's latency, and few enough to stay in registers. The apps are
@@ -46,12 +42,11 @@ double line_round_trip_ns(long trips) {
   {
     const int me = omp_get_thread_num();
     if (me == 0) team = omp_get_num_threads();
-    // Yielding after a while, so two threads on one CPU (a cgroup or taskset of one) pass the
-    // ball at each switch rather than once per time slice (~8 ms a trip).
+    // spin_until yields after a while, so two threads on one CPU (a cgroup or taskset of one)
+    // pass the ball at each switch rather than once per time slice (~8 ms a trip).
     if (omp_get_num_threads() == 2)
       for (long k = me; k < 2 * trips; k += 2) {
-        for (int spins = 0; ball.load(std::memory_order_acquire) != k; ++spins)
-          if (spins > 4096) std::this_thread::yield();
+        spin_until([&] { return ball.load(std::memory_order_acquire) == k; });
         ball.store(k + 1, std::memory_order_release);
       }
   }

@@ -2,7 +2,6 @@
 #include "pictures.hpp"
 
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include "runout/render/recorders.hpp"
 #include "runout/render/vector.hpp"
 #include "runout/setup.hpp"
+#include "runout/timing.hpp"
 
 namespace runout::app {
 
@@ -161,7 +161,6 @@ int module_render(const RenderOptions& o) {
 
 int module_bench(World& world, const SceneDef& scene, const SceneSetup& setup, const PictureOptions& o,
                  long long frames, long long steps_between) {
-  using Clock = std::chrono::steady_clock;
   render::FrameMaker maker(frame_options(o), scene, setup, &world);
   const render::FrameOptions& frame = maker.options();
   std::vector<render::Image> images;
@@ -171,10 +170,10 @@ int module_bench(World& world, const SceneDef& scene, const SceneSetup& setup, c
     world.advance(steps_between);
     auto t0 = Clock::now();
     const render::Image& img = maker.make(world, world.time() / setup.unit_time);
-    draw += std::chrono::duration<double>(Clock::now() - t0).count();
+    draw += seconds_since(t0);
     t0 = Clock::now();
     png_bytes += render::encode_png(img, false).size();
-    png += std::chrono::duration<double>(Clock::now() - t0).count();
+    png += seconds_since(t0);
     images.push_back(img);  // kept for the video stage below, untimed: a movie keeps no frames
   }
   // Video encoding alone, frames fed as fast as the encoder takes them.
@@ -189,7 +188,7 @@ int module_bench(World& world, const SceneDef& scene, const SceneSetup& setup, c
     for (auto& img : images) writer.write(img);
     writer.finish();
   }
-  const double encode = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double encode = seconds_since(t0);
   std::filesystem::remove(video_path);
   const double n = static_cast<double>(frames);
   std::printf("frame_size: %dx%d\n", frame.width, frame.height);

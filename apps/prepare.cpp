@@ -1,6 +1,5 @@
 #include "prepare.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
@@ -9,12 +8,11 @@
 #include "runout/io/files.hpp"
 #include "runout/io/outputs.hpp"
 #include "runout/io/scene_file.hpp"
+#include "runout/timing.hpp"
 
 namespace runout::app {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::vector<io::Override> parse_overrides(const std::vector<std::string>& texts) {
   std::vector<io::Override> out;
@@ -69,7 +67,7 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
       std::optional<SettleReport> settle;
       if (io::file_exists(path + ".json")) settle = io::read_settle_report(io::read_file(path + ".json"));
       release(world, setup);
-      return {std::move(world), true, std::chrono::duration<double>(Clock::now() - t0).count(), settle};
+      return {std::move(world), true, seconds_since(t0), settle};
     } catch (const IoError& e) {
       std::fprintf(stderr, "runout: warning: ignoring cached pile (%s); settling afresh\n", e.what());
     }
@@ -99,7 +97,7 @@ PreparedWorld prepare(const SceneDef& scene, const SceneSetup& setup, int thread
     }
   }
   release(world, setup);
-  return {std::move(world), false, std::chrono::duration<double>(Clock::now() - t0).count(), settle};
+  return {std::move(world), false, seconds_since(t0), settle};
 }
 
 }  // namespace runout::app

@@ -3,7 +3,6 @@
 // avalanche is chaotic: two runs that differ in the last bit of one force end with mu a few
 // hundredths apart, so a knob's effect is only told from that scatter by comparing means.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -20,12 +19,11 @@
 #include "runout/io/files.hpp"
 #include "runout/io/scene_file.hpp"
 #include "runout/run.hpp"
+#include "runout/timing.hpp"
 
 namespace runout::app {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct Variant {
   std::string family, setting;
@@ -223,7 +221,7 @@ int study_command(const StudyOptions& o) {
       } catch (const std::runtime_error& e) {  // ConfigError, NumericalError, IoError
         row.failure = e.what();
       }
-      row.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      row.wall_seconds = seconds_since(t0);
       if (row.ok)
         std::fprintf(stderr, "runout study: seed %llu, %s = %s: mu %.4f, %.1f s\n",
                      static_cast<unsigned long long>(seed), v.family.c_str(), v.setting.c_str(), row.mu,

@@ -11,7 +11,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -26,6 +25,7 @@
 #include "runout/io/scene_file.hpp"
 #include "runout/io/sweep_file.hpp"
 #include "runout/setup.hpp"
+#include "runout/timing.hpp"
 #include "sweep.hpp"
 
 namespace runout::app {
@@ -33,7 +33,6 @@ namespace runout::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 // Reads the sweep and checks every case's scene before anything is written.
 Sweep load_sweep(const std::string& path) {
@@ -206,7 +205,7 @@ int sweep_command(const SweepOptions& o) {
     const auto it = running.find(pid);
     if (it == running.end()) continue;
     const io::SweepCase& c = *it->second.first;
-    const double secs = std::chrono::duration<double>(Clock::now() - it->second.second).count();
+    const double secs = seconds_since(it->second.second);
     running.erase(it);
     ++done;
     spent += secs;

@@ -4,8 +4,6 @@
 // step's forces started before the verdict where that is safe (docs/internals.md).
 #include <omp.h>
 
-#include <thread>
-
 #include "runout/world.hpp"
 #include "step_phases.hpp"
 
@@ -13,15 +11,9 @@ namespace runout {
 
 namespace {
 
-using phases::Clock;
-using phases::seconds_since;
-
-// Waits until `flag` reaches `pass` (an earlier thread may already be a pass further): a
-// short spin (the other thread is nearly always done by now), then yielding, so a run with
-// more threads than cores does not spin away the core the other one needs.
+// Waits until `flag` reaches `pass` (an earlier thread may already be a pass further).
 void wait_for(const std::atomic<std::int64_t>& flag, std::int64_t pass) {
-  for (int spins = 0; flag.load(std::memory_order_acquire) < pass; ++spins)
-    if (spins > 4096) std::this_thread::yield();
+  spin_until([&] { return flag.load(std::memory_order_acquire) >= pass; });
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
 #include "runout/run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "runout/checkpoint.hpp"
 #include "runout/errors.hpp"
+#include "runout/timing.hpp"
 
 namespace runout {
 
@@ -131,9 +131,9 @@ void AvalancheRun::fire_observers() {
       ++s.next_at;
     }
     if (!due) continue;
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     s.observer->observe(world_, state_, now);
-    observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    observer_seconds_ += seconds_since(t0);
   }
 }
 
@@ -204,7 +204,6 @@ void AvalancheRun::freeze_rest() {
 }
 
 RunResult AvalancheRun::run() {
-  using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const std::int64_t steps0 = world_.step_count();
   const auto steps_per_unit = static_cast<std::int64_t>(std::ceil(setup_.unit_time / setup_.dt));
@@ -270,11 +269,10 @@ RunResult AvalancheRun::run() {
           if (threads_changed_) threads_changed_(t_star(), next, governor_->last_cores_used());
         }
       }
-      const auto now = Clock::now();
-      const double secs = std::chrono::duration<double>(now - last_report).count();
+      const double secs = seconds_since(last_report);
       if (progress_ && secs >= 2.0) {
         const double rate = secs > 0 ? (world_.step_count() - steps_at_report) / secs : 0.0;
-        last_report = now;
+        last_report = Clock::now();
         steps_at_report = world_.step_count();
         progress_(t_star(), state_.series.empty() ? 0.0 : translational_energy(world_.particles()) / std::max(state_.ep0, 1e-300), rate);
       }
@@ -286,7 +284,7 @@ RunResult AvalancheRun::run() {
     state_.series.push_back(sample());
     state_.series_ends_with_end_row = true;
   }
-  const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double secs = seconds_since(t0);
   state_.wall_seconds += secs;
   RunResult r = result(state_.wall_seconds);
   r.particle_steps_per_second =

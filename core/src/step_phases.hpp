@@ -2,19 +2,14 @@
 // World::step (world.cpp) calls them in order; each lives in its own file.
 #pragma once
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "runout/timing.hpp"
 #include "runout/world.hpp"
 
 namespace runout::phases {
-
-using Clock = std::chrono::steady_clock;
-inline double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // What a phase reads of the world, built once per call (Box2D's b2StepContext habit).
 struct StepContext {

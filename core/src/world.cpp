@@ -13,9 +13,6 @@
 
 namespace runout {
 
-using phases::Clock;
-using phases::seconds_since;
-
 World::World(Particles particles, std::vector<Segment> segments, ContactTable table,
              StepSettings settings)
     : particles_(std::move(particles)), segments_(std::move(segments)),
