@@ -1,6 +1,7 @@
 #include "runout/run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "runout/checkpoint.hpp"
@@ -269,10 +270,12 @@ RunResult AvalancheRun::run() {
           if (threads_changed_) threads_changed_(t_star(), next, governor_->last_cores_used());
         }
       }
-      const double secs = seconds_since(last_report);
+      // One reading of the clock serves both the interval and the next report's start.
+      const auto now = Clock::now();
+      const double secs = std::chrono::duration<double>(now - last_report).count();
       if (progress_ && secs >= 2.0) {
         const double rate = secs > 0 ? (world_.step_count() - steps_at_report) / secs : 0.0;
-        last_report = Clock::now();
+        last_report = now;
         steps_at_report = world_.step_count();
         progress_(t_star(), state_.series.empty() ? 0.0 : translational_energy(world_.particles()) / std::max(state_.ep0, 1e-300), rate);
       }
