@@ -195,11 +195,13 @@ int bench_command(const BenchOptions& o) {
   };
   // --turn-log: a row per turn, so the speed-up can be read against the host's state turn by turn
   // and, with --ceiling, against what the host gave copies that share nothing in that turn.
+  const bool log_turns = !o.turn_log.empty();
   std::ostringstream turn_log;
-  turn_log << "turn,steps,threads,seconds,against_threads,against_seconds,speedup,"
-              "line_round_trip_ns_before,line_round_trip_ns_after,"
-              "ceiling_alone_seconds,ceiling_lockstep_seconds,ceiling_lockstep_speedup,"
-              "arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n";
+  if (log_turns)
+    turn_log << "turn,steps,threads,seconds,against_threads,against_seconds,speedup,"
+                "line_round_trip_ns_before,line_round_trip_ns_after,"
+                "ceiling_alone_seconds,ceiling_lockstep_seconds,ceiling_lockstep_speedup,"
+                "arithmetic_pair_speedup_before,arithmetic_pair_speedup_after\n";
   auto csv = [](const char* format, double v) {
     char text[32] = "";
     if (!std::isnan(v)) std::snprintf(text, sizeof text, format, v);
@@ -215,15 +217,17 @@ int bench_command(const BenchOptions& o) {
     if (o.against_threads > 0) run_turn(other, turn);
     const HostState after = read_host_state();
     const double t_mine = mine.seconds - mine_before, t_other = other.seconds - other_before;
-    turn_log << k << ',' << turn << ',' << mine.threads << ',' << csv("%.9g", t_mine) << ',' << other.threads << ','
-             << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ',' << csv("%.0f", before.trip_ns) << ','
-             << csv("%.0f", after.trip_ns) << ',' << csv("%.9g", o.ceiling ? copies.alone : nan) << ','
-             << csv("%.9g", o.ceiling ? copies.lockstep : nan) << ','
-             << csv("%.4f", o.ceiling ? copies.alone / copies.lockstep : nan) << ','
-             << csv("%.3f", before.pair_speedup) << ',' << csv("%.3f", after.pair_speedup) << '\n';
+    if (log_turns)
+      turn_log << k << ',' << turn << ',' << mine.threads << ',' << csv("%.9g", t_mine) << ','
+               << other.threads << ',' << csv("%.9g", t_other) << ',' << csv("%.4f", t_other / t_mine) << ','
+               << csv("%.0f", before.trip_ns) << ',' << csv("%.0f", after.trip_ns) << ','
+               << csv("%.9g", o.ceiling ? copies.alone : nan) << ','
+               << csv("%.9g", o.ceiling ? copies.lockstep : nan) << ','
+               << csv("%.4f", o.ceiling ? copies.alone / copies.lockstep : nan) << ','
+               << csv("%.3f", before.pair_speedup) << ',' << csv("%.3f", after.pair_speedup) << '\n';
     before = after;
   }
-  if (!o.turn_log.empty()) io::write_file_atomically(o.turn_log, turn_log.str());
+  if (log_turns) io::write_file_atomically(o.turn_log, turn_log.str());
   const double n = static_cast<double>(world.particles().size());
   const double secs = mine.seconds;
   std::printf("scene: %s\n", scene.name.c_str());

@@ -21,8 +21,8 @@ struct FakeMachine {
   double step = 0.01;  // wall seconds between calls
   std::function<bool(double)> taken;
   int threads = 2;
-  ThreadGovernor::Clock now;
-  ThreadGovernor::Clock tick() {
+  ThreadGovernor::Usage now;
+  ThreadGovernor::Usage tick() {
     const double cores = taken(now.wall_seconds) ? 2.0 * threads / (threads + 1) : threads;
     now.wall_seconds += step;
     now.cpu_seconds += step * cores;
@@ -84,7 +84,7 @@ TEST(ThreadGovernor, OneShortWindowIsNotContention) {
 TEST(ThreadGovernor, ItsOwnIdleThreadsAreNotContention) {
   // The run leaves 0.7 of its two cores idle itself (serial work, its other thread parked):
   // the machine has idle cores, so nobody else took them.
-  ThreadGovernor::Clock c;
+  ThreadGovernor::Usage c;
   ThreadGovernor g(2, 1.0, 30.0, [&] {
     c.wall_seconds += 0.1; c.cpu_seconds += 0.1 * 1.3; c.idle_seconds += 0.1 * 0.7;
     return c;
@@ -102,7 +102,7 @@ TEST(ThreadGovernor, NeverGoesBelowOneOrAboveMost) {
   m.threads = 1;
   for (int k = 0; k < 1000; ++k) ASSERT_EQ(one.advise(1), 1);
   // Eight threads on a machine that gives the process 3.2 cores: three threads.
-  ThreadGovernor::Clock c;
+  ThreadGovernor::Usage c;
   ThreadGovernor eight(8, 1.0, 30.0, [&] { c.wall_seconds += 0.1; c.cpu_seconds += 0.1 * 3.2; return c; });
   int t = 8;
   for (int k = 0; k < 40; ++k) t = eight.advise(t);
@@ -124,7 +124,7 @@ TEST(ThreadGovernor, ARunThatChangesItsThreadsFollowsTheSameTrajectory) {
     // The run asks about 20 times per t*. Fake wall time: 0.05 s per call; one core is taken
     // from the 5th to the 15th call; windows of 0.1 s, a retry 0.3 s after a drop.
     int calls = 0;
-    ThreadGovernor::Clock c;
+    ThreadGovernor::Usage c;
     ThreadGovernor g(2, 0.1, 0.3, [&] {
       ++calls;
       if (governed) ++calls_at[std::min(w.settings().threads, 2)];

@@ -9,15 +9,17 @@
 #include <fstream>
 #include <string>
 
+#include "runout/timing.hpp"
+
 namespace runout {
 
 namespace {
 
-ThreadGovernor::Clock process_clock() {
+ThreadGovernor::Usage process_usage() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  const auto wall = std::chrono::steady_clock::now().time_since_epoch();
+  const auto wall = Clock::now().time_since_epoch();
   // The machine's idle and iowait ticks: the first line of /proc/stat, "cpu" and the counters
   // user, nice, system, idle, iowait in clock ticks (proc(5)).
   double idle = 0;
@@ -33,13 +35,13 @@ ThreadGovernor::Clock process_clock() {
 }  // namespace
 
 ThreadGovernor::ThreadGovernor(int most, double window_seconds, double retry_seconds,
-                               std::function<Clock()> now)
+                               std::function<Usage()> now)
     : most_(std::max(1, most)), window_(window_seconds), retry_(retry_seconds),
-      now_(now ? std::move(now) : std::function<Clock()>(process_clock)) {}
+      now_(now ? std::move(now) : std::function<Usage()>(process_usage)) {}
 
 int ThreadGovernor::advise(int current) {
   if (most_ == 1) return 1;
-  const Clock now = now_();
+  const Usage now = now_();
   // A window starts afresh at the first call and whenever the count changed under it.
   if (!started_ || current != window_threads_) {
     started_ = true;

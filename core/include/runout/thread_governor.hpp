@@ -19,17 +19,17 @@ namespace runout {
 
 class ThreadGovernor {
  public:
-  struct Clock {
+  struct Usage {
     double wall_seconds = 0, cpu_seconds = 0;  // now, and this process's CPU time so far
     double idle_seconds = 0;  // the machine's idle CPU time so far, summed over its cores
   };
   static constexpr double kFairShare = 0.75, kIdleCores = 0.25;
 
-  // `most`: the threads the run may use (its cores). `now`: the clock, by default the steady
-  // clock, getrusage(RUSAGE_SELF) and the idle time of /proc/stat (0 where it cannot be read:
-  // every short window then counts).
+  // `most`: the threads the run may use (its cores). `now`: reads the usage so far, by default
+  // the steady clock, getrusage(RUSAGE_SELF) and the idle time of /proc/stat (0 where it cannot
+  // be read: every short window then counts).
   explicit ThreadGovernor(int most, double window_seconds = 1.0, double retry_seconds = 30.0,
-                          std::function<Clock()> now = {});
+                          std::function<Usage()> now = {});
 
   // Called between steps, cheaply and often; the threads the run should use from now on.
   // `current` is what it uses now (a window spans one count only).
@@ -42,10 +42,10 @@ class ThreadGovernor {
  private:
   int most_;
   double window_, retry_;
-  std::function<Clock()> now_;
+  std::function<Usage()> now_;
   bool started_ = false;
   int window_threads_ = 0;
-  Clock window_start_;
+  Usage window_start_;
   double reduced_at_ = 0;  // wall time of the last drop below most
   int short_windows_ = 0;  // windows in a row that got less than the fair share
   double last_cores_ = 0, last_idle_cores_ = 0;
