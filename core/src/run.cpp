@@ -1,7 +1,6 @@
 #include "runout/run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "runout/checkpoint.hpp"
@@ -272,7 +271,7 @@ RunResult AvalancheRun::run() {
       }
       // One reading of the clock serves both the interval and the next report's start.
       const auto now = Clock::now();
-      const double secs = std::chrono::duration<double>(now - last_report).count();
+      const double secs = seconds_between(last_report, now);
       if (progress_ && secs >= 2.0) {
         const double rate = secs > 0 ? (world_.step_count() - steps_at_report) / secs : 0.0;
         last_report = now;

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -19,7 +18,7 @@ ThreadGovernor::Usage process_usage() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  const auto wall = Clock::now().time_since_epoch();
+  const auto wall = Clock::now();
   // The machine's idle and iowait ticks: the first line of /proc/stat, "cpu" and the counters
   // user, nice, system, idle, iowait in clock ticks (proc(5)).
   double idle = 0;
@@ -29,7 +28,7 @@ ThreadGovernor::Usage process_usage() {
     if (stat >> cpu >> user >> nice >> system >> idle_ticks >> iowait && cpu == "cpu")
       idle = static_cast<double>(idle_ticks + iowait) / static_cast<double>(sysconf(_SC_CLK_TCK));
   }
-  return {std::chrono::duration<double>(wall).count(), seconds(u.ru_utime) + seconds(u.ru_stime), idle};
+  return {seconds_between(Clock::time_point{}, wall), seconds(u.ru_utime) + seconds(u.ru_stime), idle};
 }
 
 }  // namespace
