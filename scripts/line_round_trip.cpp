@@ -4,23 +4,15 @@
 // a two-thread runout step moves a few hundred lines between its threads (the block boundary).
 //   g++ -O2 -pthread scripts/line_round_trip.cpp -o /tmp/line_round_trip
 //   /tmp/line_round_trip [TRIPS=200000]   -> "round trip: 55 ns"
-#include <pthread.h>
-#include <sched.h>
-
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <thread>
 
-namespace {
+#include "pin_to_cpu.hpp"
 
-bool pin_to(int cpu) {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  CPU_SET(cpu, &set);
-  return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
-}
+namespace {
 
 // Waits for the counter to reach `from`, then hands it on: the line crosses once per call.
 void pass(std::atomic<long>& ball, long from) {
