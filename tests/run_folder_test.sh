@@ -18,6 +18,18 @@ if diff:
     sys.exit(1)
 PY
 }
+# until_written FILE PID: waits until FILE exists while PID runs (at most a minute); fails if PID
+# ends without it. The signals below wait for a checkpoint, not for a fixed time: on a fast host
+# the quick pile ran to rest within the 1.5 s this test once slept, and the signal found no run.
+until_written() {
+  local i
+  for i in $(seq 6000); do
+    [ -e "$1" ] && return 0
+    kill -0 "$2" 2>/dev/null || { [ -e "$1" ]; return; }
+    sleep 0.01
+  done
+  return 1
+}
 box=$src/fuzz/checkpoint_scene.toml
 quick=$src/examples/quick.toml
 cache=(--cache-dir "$work/cache")
@@ -91,7 +103,8 @@ for sig in INT TERM; do
   [ -e "$(dirname "$bin")/runout_pictures.so" ] && movie=(--movie "$d/flow.mp4")
   "$bin" "${args[@]}" "${movie[@]}" >/dev/null 2>"$work/sig.err" &
   pid=$!
-  sleep 1.5
+  # The first checkpoint (t* = 3.7) comes early in a run to rest at t* ~ 100.
+  until_written "$d/checkpoint.bin" $pid || bad "SIG$sig: the run ended or stalled before its first checkpoint"
   kill -s "$sig" $pid
   wait $pid; rc=$?
   want=$([ $sig = INT ] && echo 130 || echo 143)
@@ -104,13 +117,14 @@ for sig in INT TERM; do
     && diff -r "$d/vtk" "$work/ref/vtk" >/dev/null && ok || bad "SIG$sig + --resume differs from the run never stopped"
 done
 
-# 6. kill -9 at a random moment, then a damaged newest checkpoint: the run falls back to the one
-# before, says so, and still ends exactly as the reference.
+# 6. kill -9 while the run writes or has just written its second checkpoint, then a damaged
+# newest checkpoint: the run falls back to the one before, says so, and still ends exactly as the
+# reference.
 d="$work/kill9"
 args=(run "$quick" --out "$d" -q "${cache[@]}" --set output.checkpoint_every=3.7 --vtk-every 5)
 "$bin" "${args[@]}" >/dev/null 2>&1 &
 pid=$!
-sleep 2.2
+until_written "$d/checkpoint.prev.bin" $pid || bad "kill -9: the run ended or stalled before its second checkpoint"
 kill -9 $pid; wait $pid 2>/dev/null
 # A frame's temporary left in the staged frames by a writer that is gone (what a kill -9 during
 # a VTK frame's write leaves): the resumed run must not publish it.
