@@ -85,12 +85,19 @@ else
   echo "note: GNU parallel not installed; its route not tested"
 fi
 
-# SIGKILL of the sweep at a moment the test does not choose, then the sweep again.
+# SIGKILL of the sweep once its first case is done, so that it lands in a later one, then the
+# sweep again. (A fixed 1.3 s once did this; on a fast host the whole sweep ends in ~1 s and the
+# kill found nothing to kill.)
 "$bin" sweep "$sweep" --out "$work/killed" --jobs 1 "${cache[@]}" 2>/dev/null &
 pid=$!
-sleep 1.3
+for _ in $(seq 6000); do
+  if ls "$work"/killed/cases/*/summary.json >/dev/null 2>&1 || ! kill -0 $pid 2>/dev/null; then break; fi
+  sleep 0.01
+done
 kill -9 $pid; wait $pid 2>/dev/null
-sleep 0.5  # the case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint
+[ "$(ls "$work"/killed/cases/*/summary.json 2>/dev/null | wc -l)" -lt 4 ] && ok || bad "the sweep ended before it was killed"
+# The case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint: wait until it is gone.
+for _ in $(seq 6000); do pgrep -f -- "$work/killed/cases" >/dev/null || break; sleep 0.01; done
 "$bin" sweep "$sweep" --out "$work/killed" --jobs 2 "${cache[@]}" 2>"$work/killed.err" &&
   cmp -s "$work/killed/results.csv" "$work/first.csv" && ok || bad "killed + restarted results.csv differs: $(tail -3 "$work/killed.err")"
 # ... and the states it saved along the way are the uninterrupted run's, byte for byte.
