@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev
   clang libclang-rt-14-dev libomp-dev
-  parallel slurm-wlm munge chromium
+  parallel slurm-wlm munge chromium procps
   pkg-config libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core libcairo2-dev libisal-dev libyuv-dev
   poppler-utils librsvg2-bin
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev

@@ -96,7 +96,8 @@ for _ in $(seq 6000); do
 done
 kill -9 $pid; wait $pid 2>/dev/null
 [ "$(ls "$work"/killed/cases/*/summary.json 2>/dev/null | wc -l)" -lt 4 ] && ok || bad "the sweep ended before it was killed"
-# The case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint: wait until it is gone.
+# The case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint: wait until it is gone
+# (pgrep: procps, in scripts/install-deps.sh).
 for _ in $(seq 6000); do pgrep -f -- "$work/killed/cases" >/dev/null || break; sleep 0.01; done
 "$bin" sweep "$sweep" --out "$work/killed" --jobs 2 "${cache[@]}" 2>"$work/killed.err" &&
   cmp -s "$work/killed/results.csv" "$work/first.csv" && ok || bad "killed + restarted results.csv differs: $(tail -3 "$work/killed.err")"
