@@ -18,18 +18,6 @@ if diff:
     sys.exit(1)
 PY
 }
-# until_written FILE PID: waits until FILE exists while PID runs (at most a minute); fails if PID
-# ends without it. The signals below wait for a checkpoint, not for a fixed time: on a fast host
-# the quick pile ran to rest within the 1.5 s this test once slept, and the signal found no run.
-until_written() {
-  local i
-  for i in $(seq 6000); do
-    [ -e "$1" ] && return 0
-    kill -0 "$2" 2>/dev/null || { [ -e "$1" ]; return; }
-    sleep 0.01
-  done
-  return 1
-}
 box=$src/fuzz/checkpoint_scene.toml
 quick=$src/examples/quick.toml
 cache=(--cache-dir "$work/cache")

@@ -90,10 +90,7 @@ fi
 # kill found nothing to kill.)
 "$bin" sweep "$sweep" --out "$work/killed" --jobs 1 "${cache[@]}" 2>/dev/null &
 pid=$!
-for _ in $(seq 6000); do
-  if ls "$work"/killed/cases/*/summary.json >/dev/null 2>&1 || ! kill -0 $pid 2>/dev/null; then break; fi
-  sleep 0.01
-done
+until_written "$work/killed/cases/*/summary.json" $pid || bad "the sweep ended or stalled before its first case was done"
 kill -9 $pid; wait $pid 2>/dev/null
 [ "$(ls "$work"/killed/cases/*/summary.json 2>/dev/null | wc -l)" -lt 4 ] && ok || bad "the sweep ended before it was killed"
 # The case it ran gets SIGTERM (PR_SET_PDEATHSIG) and writes its checkpoint: wait until it is gone
