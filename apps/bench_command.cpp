@@ -133,6 +133,7 @@ int bench_command(const BenchOptions& o) {
                                    o.cache_dir.empty() ? default_cache_dir() : o.cache_dir, true, false);
   World& world = prepared.world;
   world.set_threads(o.threads);
+  world.set_track_energy(o.ledger);
   const long long warmup = o.warmup_steps >= 0 ? o.warmup_steps
                                               : static_cast<long long>(std::ceil(5.0 * setup.unit_time / setup.dt));
   world.advance(warmup);
@@ -234,6 +235,7 @@ int bench_command(const BenchOptions& o) {
   std::printf("discs: %.0f\n", n);
   std::printf("threads: %d\n", o.threads);
   std::printf("ahead: %s\n", o.ahead.c_str());
+  std::printf("ledger: %s\n", o.ledger ? "on" : "off");
   std::printf("t_star_start: %.3f\n", t_star_start);
   std::printf("steps: %lld\n", o.steps);
   std::printf("seconds: %.4f\n", secs);
@@ -244,6 +246,10 @@ int bench_command(const BenchOptions& o) {
   std::printf("share_rebuild: %.3f\n", mine.profile.rebuild / secs);
   std::printf("steps_ahead: %lld\n", static_cast<long long>(mine.profile.steps_ahead));
   std::printf("steps_dropped: %lld\n", static_cast<long long>(mine.profile.steps_dropped));
+  if (o.ledger) {  // what the ledger booked from the warm-up's start on: it did run
+    const Dissipation& lost = world.dissipation();
+    std::printf("ledger_dissipated_joules: %.6g\n", lost.normal + lost.friction + lost.rolling);
+  }
   std::printf("particle_steps_per_second: %.0f\n", n * o.steps / secs);
   if (o.against_threads > 0) {
     std::printf("turn_steps: %lld\n", o.turn_steps);

@@ -55,6 +55,9 @@ struct BenchOptions {
   // (StepSettings::Ahead, by its name in kAheadNames); --against-threads always runs with the
   // default, when_safe.
   std::string ahead = "when_safe";
+  // Keep the energy ledger (--ledger), as a run does whose output.series has "energy" (the
+  // default); off, the step is timed as LAMMPS's deck runs it, without dissipation counters.
+  bool ledger = false;
   long long turn_steps = 1000;
   // Non-empty (--turn-log, with --against-threads): each turn's seconds at both counts and the
   // line round trips read around it, as CSV.

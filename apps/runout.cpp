@@ -95,6 +95,9 @@ int main(int argc, char** argv) {
                         "when_safe | always | never: when a step of several threads starts its forces before the verdict on "
                         "the step before (--against-threads keeps when_safe; no result depends on it)")
       ->check(CLI::IsMember(runout::app::kAheadNames));
+  bench_cmd->add_flag("--ledger", bench.ledger,
+                      "keep the energy ledger in the pair pass, as runs do whose output.series has \"energy\" (the "
+                      "default); without it the step runs as LAMMPS's deck does, with no dissipation counters");
   auto* turns = bench_cmd->add_option("--turn-steps", bench.turn_steps,
                                       "steps of one turn with --against-threads or --ceiling (default 1000)")
                     ->check(CLI::Range(1LL, 100000000LL));

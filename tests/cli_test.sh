@@ -90,6 +90,9 @@ check bench_warmup 0 't_star_start: 5.0' -- "$bin" bench --scene "$work/two.toml
 # Two thread counts in turns of 3 steps: each runs all 10 (3 + 3 + 3 + 1), and the speedup is printed.
 check bench_turns 0 'against_steps: 10' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
 check bench_speedup 0 'speedup: [0-9]+\.[0-9]{3}' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --against-threads 1 --turn-steps 3
+# --ledger times the step as runs keep it (the energy series on): the pass books its losses.
+check bench_ledger 0 'ledger_dissipated_joules: [1-9][0-9.]*(e[-+][0-9]+)?$' -- "$bin" bench --scene "$work/two.toml" --steps 10 --threads 2 --ledger
+check bench_no_ledger 0 'ledger: off' -- "$bin" bench --scene "$work/two.toml" --steps 10
 check bench_bad_against 2 'against-threads' -- "$bin" bench --scene "$work/two.toml" --steps 10 --against-threads 0
 check bench_turns_alone 2 'turn-steps requires --against-threads or --ceiling' -- "$bin" bench --scene "$work/two.toml" --steps 10 --turn-steps 3
 # --ceiling: the copies run as many steps as the timed world, in turns, and need two threads.
