@@ -171,7 +171,7 @@ struct Kernel {
 
 // Runs a kernel over contacts [lo, hi) of `count`, whose ends are ends of blocks of `block`.
 // With the ledger, each block's sums go to blocks[b] and are added in block order after every
-// thread is done (LedgerBlocks::total), so they are the same bits whatever the thread count and
+// thread is done (LedgerBlocks::carry), so they are the same bits whatever the thread count and
 // however the blocks are shared (a resumed run may use another count, SPEC §8).
 template <class Kernel>
 PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
@@ -308,14 +308,17 @@ void LedgerBlocks::size_for(const PairContacts& pairs, const WallContacts& walls
   this->walls.resize(blocks(walls.size(), kWallLedgerBlock));
 }
 
-PassSums LedgerBlocks::total() const {
-  // The pairs' sum plus the walls' sum, each added from zero in block order.
-  auto sum = [](const std::vector<Block>& blocks) {
-    PassSums t;
-    for (const Block& b : blocks) t = t + b.sums;
+LedgerBlocks::Partial LedgerBlocks::carry(Partial from, const ContactRange& range) const {
+  // An empty range may start inside the last block, which is then another thread's.
+  auto add = [](PassSums t, const std::vector<Block>& blocks, std::int64_t lo, std::int64_t hi,
+                std::int64_t block) {
+    if (lo >= hi) return t;
+    for (std::int64_t b = lo / block; b * block < hi; ++b) t = t + blocks[b].sums;
     return t;
   };
-  return sum(pairs) + sum(walls);
+  from.pairs = add(from.pairs, pairs, range.pair_lo, range.pair_hi, kPairLedgerBlock);
+  from.walls = add(from.walls, walls, range.wall_lo, range.wall_hi, kWallLedgerBlock);
+  return from;
 }
 
 }  // namespace runout

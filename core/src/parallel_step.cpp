@@ -85,6 +85,15 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   Outcome on_stack[S * kOnStack];
   std::vector<Outcome> on_heap(T > kOnStack ? S * static_cast<std::size_t>(T) : 0);
   Outcome* const out = T > kOnStack ? on_heap.data() : on_stack;
+  // With the ledger, block t's partial of each pass (the pass's losses up to its last contact),
+  // by pass in turn like the outcomes but on lines of their own: a pass without the ledger
+  // reads the outcomes' lines as before.
+  struct alignas(64) Carried {
+    LedgerBlocks::Partial ledger;
+  };
+  Carried carried_on_stack[S * kOnStack];
+  std::vector<Carried> carried_on_heap(T > kOnStack ? S * static_cast<std::size_t>(T) : 0);
+  Carried* const carried = T > kOnStack ? carried_on_heap.data() : carried_on_stack;
   // What thread 0 keeps of each pass (the last outcome, the region's totals, the verdicts) sits
   // on cache lines of its own and goes back into the World once the region ends. Written
   // every pass into World members and this frame's locals, it shared lines with what the
@@ -99,23 +108,20 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     Verdict recent[2];
     std::int64_t recent_count = 0;
     double peak_impact = 0;
-    Dissipation ledger;
     std::int64_t ahead = 0, dropped = 0;
   } kept;
+  // The ledger, kept by the last thread: its partial of a pass is the pass's total.
+  struct alignas(64) {
+    Dissipation ledger;
+  } last_kept;
   kept.recent[0] = recent_[0];
   kept.recent[1] = recent_[1];
   kept.recent_count = recent_count_;
   kept.peak_impact = peak_impact_overlap_;
-  kept.ledger = ledger_;
+  last_kept.ledger = ledger_;
   const auto t0 = Clock::now();
   // What thread 0 keeps of each pass, once every block's outcome is out.
-  auto settle = [&](std::int64_t pass, const Verdict& v, const PassSums& sums, const phases::Motion& m) {
-    if (ledger) {
-      const PassSums total = ledger_blocks_[pass % S].total();
-      kept.ledger.normal += total.loss_normal;
-      kept.ledger.friction += total.loss_friction;
-      kept.ledger.rolling += total.loss_rolling;
-    }
+  auto settle = [&](const Verdict& v, const PassSums& sums, const phases::Motion& m) {
     if (forces) kept.peak_impact = std::max(kept.peak_impact, sums.worst * guard_radius_scale_);
     kept.recent[0] = kept.recent[1];
     kept.recent[1] = v;
@@ -123,6 +129,12 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     kept.last_sums = sums;
     kept.last_motion = m;
     ++kept.done;
+  };
+  auto book = [&](const LedgerBlocks::Partial& pass_total) {
+    const PassSums total = pass_total.total();
+    last_kept.ledger.normal += total.loss_normal;
+    last_kept.ledger.friction += total.loss_friction;
+    last_kept.ledger.rolling += total.loss_rolling;
   };
   std::int64_t taken = 0;  // flag values used: the passes done, and one computed ahead and dropped
   if (T == 1) {
@@ -132,7 +144,10 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass, 0);
     kept.forces_seconds = seconds_since(t0);
     const phases::Motion motion = motion_of(0, 0, n);
-    settle(pass, judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
+    if (ledger)
+      book(ledger_blocks_[pass % S].carry({}, {0, static_cast<std::int64_t>(pairs_.size()), 0,
+                                               static_cast<std::int64_t>(wall_contacts_.size())}));
+    settle(judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
     taken = 1;
   } else {
     // Thread t takes the discs of block t for the whole step: the contacts of their rows, then
@@ -196,6 +211,19 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         handoff_.prefetch(t - 1, pairs_);
       for (int u = 0; u < t; ++u) wait_for(ready_.flag[u].pass, pass);
     };
+    // The ledger's partial of a pass, carried on from block t - 1's over block t's contacts
+    // (LedgerBlocks::Partial). Block 0 carries before its `done`, so the next block's wait for
+    // that flag covers it; later blocks carry at their verdict, the last then books the pass.
+    auto carry = [&](int t, std::int64_t pass) {
+      const int slot = static_cast<int>(pass % S);
+      LedgerBlocks::Partial from;
+      if (t > 0) {
+        wait_for(ready_.flag[t - 1].carried, pass);
+        from = carried[slot * T + t - 1].ledger;
+      }
+      carried[slot * T + t].ledger = ledger_blocks_[slot].carry(from, handoff_.range[t]);
+      ready_.flag[t].carried.store(pass, std::memory_order_release);
+    };
     auto move_block = [&](int t, std::int64_t pass, bool watched) {
       Outcome& mine = out[(pass % S) * T + t];
       const std::int64_t mid = handoff_.first_free[t];
@@ -203,11 +231,16 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       ready_.flag[t].moved.store(pass, std::memory_order_release);
       mine.motion = phases::Motion::merge(reached, motion_of(t, mid, b[t + 1]));
       if (watched) mine.drift = drift_.measure(particles_.x, particles_.y, x_at_rebuild_, y_at_rebuild_, t, static_cast<int>(pass % S));
+      if (ledger && t == 0) carry(0, pass);
       ready_.flag[t].done.store(pass, std::memory_order_release);
     };
     // Every block's outcome of the pass, merged in block order: each thread judges it alike.
     auto verdict_on = [&](int me, std::int64_t pass, bool watched) {
       const int slot = static_cast<int>(pass % S);
+      if (ledger && me > 0) {
+        carry(me, pass);
+        if (me == T - 1) book(carried[slot * T + me].ledger);
+      }
       PassSums sums;
       phases::Motion motion;
       ListDrift::Partial blocks;
@@ -219,7 +252,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
         blocks = ListDrift::Partial::merge(blocks, o.drift);
       }
       const Verdict v = judge(sums, motion, watched, blocks, slot);
-      if (me == 0) settle(pass, v, sums, motion);
+      if (me == 0) settle(v, sums, motion);
       return v;
     };
     // Whether the next pass's forces may start before this pass's verdict: only where the
@@ -291,6 +324,10 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
             wait_earlier(t, pass);
             move_block(t, pass, watched);
           }
+          if (ledger) {
+            for (int t = 1; t < T; ++t) carry(t, pass);
+            book(carried[(pass % S) * T + T - 1].ledger);
+          }
           const Verdict v = verdict_on(me, pass, watched);
           if (!v.go_on) break;
           watched = v.spent && groups_found;
@@ -305,7 +342,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   recent_[1] = kept.recent[1];
   recent_count_ = kept.recent_count;
   peak_impact_overlap_ = kept.peak_impact;
-  ledger_ = kept.ledger;
+  ledger_ = last_kept.ledger;
   profile_.steps_ahead += kept.ahead;
   profile_.steps_dropped += kept.dropped;
   const std::int64_t done = kept.done;

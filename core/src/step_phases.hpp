@@ -43,7 +43,7 @@ struct HistoryTurn {
 
 // Contact forces of the range's pairs and disc–wall contacts (contact_forces.cpp): writes the
 // per-contact forces and torques and the new history. Returns the largest guarded overlap;
-// with the ledger, the losses go to `ledger`'s blocks (LedgerBlocks::total).
+// with the ledger, the losses go to `ledger`'s blocks (LedgerBlocks::carry).
 PassSums contact_forces(const StepContext& step, const Particles& p, PairContacts& pairs,
                         WallContacts& walls, const ContactRange& range, LedgerBlocks& ledger,
                         const HistoryTurn& history);

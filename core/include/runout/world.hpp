@@ -87,9 +87,18 @@ struct LedgerBlocks {
   struct alignas(64) Block {
     PassSums sums;
   };
+  // The pass's sums so far, pairs' and walls' apart: each is added from zero in block order,
+  // the pairs' and the walls' sums then added (total). A thread carries on its predecessor's
+  // partial over its own blocks, so the pass's total has the same bits as one thread's while
+  // no thread reads the other's blocks (docs/performance_log.md, issue 11 forty-sixth session).
+  struct Partial {
+    PassSums pairs, walls;
+    PassSums total() const { return pairs + walls; }
+  };
   std::vector<Block> pairs, walls;
   void size_for(const PairContacts& pairs, const WallContacts& walls);
-  PassSums total() const;  // the largest overlap share and the losses, in block order
+  // `from` carried on over the blocks of `range`, whose ends are ends of blocks.
+  Partial carry(Partial from, const ContactRange& range) const;
 };
 
 // Energy lost since the World was made (J): normal (Walton–Braun hysteresis of contacts that
@@ -253,8 +262,9 @@ class World {
   // pass it reaches later would let a thread skip its wait.
   struct ReadyFlags {
     // `pass`: the boundary pairs are done; `moved`: the discs earlier blocks reach have moved
-    // (their pushes read, their new state out); `done`: the whole pass is (its outcome is out).
-    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}, moved{-1}, done{-1}; };
+    // (their pushes read, their new state out); `done`: the whole pass is (its outcome is out);
+    // `carried`: the ledger's partial is carried over the block's contacts.
+    struct alignas(64) Flag { std::atomic<std::int64_t> pass{-1}, moved{-1}, done{-1}, carried{-1}; };
     std::unique_ptr<Flag[]> flag = std::make_unique<Flag[]>(kMaxThreads);
     ReadyFlags() = default;
     ReadyFlags(const ReadyFlags&) : ReadyFlags() {}
@@ -263,6 +273,7 @@ class World {
         flag[t].pass.store(-1, std::memory_order_relaxed);
         flag[t].moved.store(-1, std::memory_order_relaxed);
         flag[t].done.store(-1, std::memory_order_relaxed);
+        flag[t].carried.store(-1, std::memory_order_relaxed);
       }
       return *this;
     }
