@@ -53,10 +53,8 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   double* const wall_history[2] = {wall_contacts_.history.data(), turns ? wall_history_next_.data() : wall_contacts_.history.data()};
   const phases::HistoryTurn turn[2] = {{pair_history[0], pair_history[1], wall_history[0], wall_history[1]},
                                        {pair_history[1], pair_history[0], wall_history[1], wall_history[0]}};
-  auto contacts = [&](std::int64_t pair_lo, std::int64_t pair_hi, std::int64_t wall_lo,
-                      std::int64_t wall_hi, std::int64_t pass, std::int64_t k) {
-    return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_,
-                                  {pair_lo, pair_hi, wall_lo, wall_hi},
+  auto contacts = [&](const ContactRange& range, std::int64_t pass, std::int64_t k) {
+    return phases::contact_forces(ctx, particles_, pairs_, wall_contacts_, range,
                                   ledger_blocks_[pass % S], turn[k & 1]);
   };
   // Where block t's accelerations go: the discs' arrays with one thread, or where velocity
@@ -140,13 +138,13 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
   if (T == 1) {
     handoff_.release(pairs_, runs_, lists_version_);
     const std::int64_t pass = passes_ + 1;
+    const ContactRange all{0, static_cast<std::int64_t>(pairs_.size()), 0,
+                           static_cast<std::int64_t>(wall_contacts_.size())};
     PassSums sums;
-    if (forces) sums = contacts(0, static_cast<std::int64_t>(pairs_.size()), 0, static_cast<std::int64_t>(wall_contacts_.size()), pass, 0);
+    if (forces) sums = contacts(all, pass, 0);
     kept.forces_seconds = seconds_since(t0);
     const phases::Motion motion = motion_of(0, 0, n);
-    if (ledger)
-      book(ledger_blocks_[pass % S].carry({}, {0, static_cast<std::int64_t>(pairs_.size()), 0,
-                                               static_cast<std::int64_t>(wall_contacts_.size())}));
+    if (ledger) book(ledger_blocks_[pass % S].carry({}, all));
     settle(judge(sums, motion, false, {}, static_cast<int>(pass % S)), sums, motion);
     taken = 1;
   } else {
@@ -195,11 +193,11 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       const ContactRange& r = handoff_.range[t];
       const std::int64_t split = handoff_.boundary_pair[t];
       if (forces) {
-        mine.sums = contacts(split, r.pair_hi, r.wall_lo, r.wall_hi, pass, k);
+        mine.sums = contacts({split, r.pair_hi, r.wall_lo, r.wall_hi}, pass, k);
         handoff_.publish(t, pairs_);
       }
       ready_.flag[t].pass.store(pass, std::memory_order_release);
-      if (forces) mine.sums.worst = std::max(mine.sums.worst, contacts(r.pair_lo, split, 0, 0, pass, k).worst);
+      if (forces) mine.sums.worst = std::max(mine.sums.worst, contacts({r.pair_lo, split, 0, 0}, pass, k).worst);
     };
     // Thread t's sums, kick and drift: first (once the earlier threads' boundary pairs are
     // done) the discs their contacts reach, then the rest. The reached discs' lines, which the
