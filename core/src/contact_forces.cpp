@@ -170,9 +170,10 @@ struct Kernel {
 };
 
 // Runs a kernel over contacts [lo, hi) of `count`, whose ends are ends of blocks of `block`.
-// With the ledger, each block's sums go to blocks[b] and are added in block order after every
-// thread is done (LedgerBlocks::carry), so they are the same bits whatever the thread count and
-// however the blocks are shared (a resumed run may use another count, SPEC §8).
+// With the ledger, each block's sums go to blocks[b] and are added in block order, each thread
+// carrying the sum on over its own blocks (LedgerBlocks::carry), so they are the same bits
+// whatever the thread count and however the blocks are shared (a resumed run may use another
+// count, SPEC §8).
 template <class Kernel>
 PassSums run_blocks(const Kernel& kernel, std::int64_t lo, std::int64_t hi, bool ledger,
                     LedgerBlocks::Block* blocks, std::int64_t block) {
