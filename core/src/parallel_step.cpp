@@ -211,7 +211,8 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     };
     // The ledger's partial of a pass, carried on from block t - 1's over block t's contacts
     // (LedgerBlocks::Partial). Block 0 carries before its `done`, so the next block's wait for
-    // that flag covers it; later blocks carry at their verdict, the last then books the pass.
+    // that flag covers it; later blocks carry at their verdict. The last block's partial is the
+    // pass's total: whoever carries it books the pass, once.
     auto carry = [&](int t, std::int64_t pass) {
       const int slot = static_cast<int>(pass % S);
       LedgerBlocks::Partial from;
@@ -221,6 +222,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
       }
       carried[slot * T + t].ledger = ledger_blocks_[slot].carry(from, handoff_.range[t]);
       ready_.flag[t].carried.store(pass, std::memory_order_release);
+      if (t == T - 1) book(carried[slot * T + t].ledger);
     };
     auto move_block = [&](int t, std::int64_t pass, bool watched) {
       Outcome& mine = out[(pass % S) * T + t];
@@ -235,10 +237,7 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
     // Every block's outcome of the pass, merged in block order: each thread judges it alike.
     auto verdict_on = [&](int me, std::int64_t pass, bool watched) {
       const int slot = static_cast<int>(pass % S);
-      if (ledger && me > 0) {
-        carry(me, pass);
-        if (me == T - 1) book(carried[slot * T + me].ledger);
-      }
+      if (ledger && me > 0) carry(me, pass);
       PassSums sums;
       phases::Motion motion;
       ListDrift::Partial blocks;
@@ -322,10 +321,8 @@ std::int64_t World::forces_and_motion(bool forces, double kick, double drift, st
             wait_earlier(t, pass);
             move_block(t, pass, watched);
           }
-          if (ledger) {
+          if (ledger)
             for (int t = 1; t < T; ++t) carry(t, pass);
-            book(carried[(pass % S) * T + T - 1].ledger);
-          }
           const Verdict v = verdict_on(me, pass, watched);
           if (!v.go_on) break;
           watched = v.spent && groups_found;
