@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,6 +27,15 @@
 namespace {
 
 enum class Mode { plain, clwb, flush, prefetch, reader_flush };
+
+std::optional<Mode> mode_named(const std::string& name) {
+  if (name == "plain") return Mode::plain;
+  if (name == "clwb") return Mode::clwb;
+  if (name == "flush") return Mode::flush;
+  if (name == "prefetch") return Mode::prefetch;
+  if (name == "reader-flush") return Mode::reader_flush;
+  return std::nullopt;
+}
 
 struct alignas(64) Flag {
   std::atomic<long> value{0};
@@ -47,16 +57,12 @@ int main(int argc, char** argv) {
   const long lines = std::atol(argv[1]);
   const long handoffs = argc > 2 ? std::atol(argv[2]) : 20000;
   const std::string name = argc > 3 ? argv[3] : "plain";
-  const Mode mode = name == "plain"          ? Mode::plain
-                    : name == "clwb"         ? Mode::clwb
-                    : name == "flush"        ? Mode::flush
-                    : name == "prefetch"     ? Mode::prefetch
-                    : name == "reader-flush" ? Mode::reader_flush
-                                             : static_cast<Mode>(-1);
-  if (lines < 1 || handoffs < 10 || static_cast<int>(mode) < 0) {
+  const std::optional<Mode> named = mode_named(name);
+  if (lines < 1 || handoffs < 10 || !named) {
     std::fputs(usage, stderr);
     return 2;
   }
+  const Mode mode = *named;
   std::vector<Line> data(static_cast<std::size_t>(lines));
   Flag written, read;
   std::vector<double> ns(static_cast<std::size_t>(handoffs));
