@@ -123,14 +123,16 @@ class StateWriter : public Observer {
   std::uint64_t key_;
 };
 
-// Default: every core for a thesis-sized pile; one thread below about 2,000 discs, where the
-// fork and join of each phase costs more than it saves (the quick pile: 140k steps/s on one
-// thread, 109k on two).
+// Default: every core from 800 discs, one thread below, where the threads' meeting at every
+// step costs more than it saves. Whole runs of the examples to rest, one thread against two
+// (docs/performance_log.md, forty-eighth session): 250 and 500 discs ran faster on one, 650
+// about even to ×1.3 faster on two, 900–1,850 ×1.2–1.6 faster on two.
 int resolve_threads(int threads, const SceneSetup& setup) {
+  constexpr int kDiscsForEveryCore = 800;
   if (threads > 0) return threads;
   int discs = 0;
   for (int c : setup.counts) discs += c;
-  return discs >= 2000 ? std::max(1, omp_get_num_procs()) : 1;
+  return discs >= kDiscsForEveryCore ? std::max(1, omp_get_num_procs()) : 1;
 }
 
 // SIGINT and SIGTERM ask the run to stop after the current step. A signal handler can reach

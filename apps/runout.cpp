@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out,-o", run.out_dir, "output folder")->required();
   run_cmd->add_option("--set", run.overrides, "override a scene key, e.g. --set contact.normal_model=hertz")
       ->take_all()->allow_extra_args(false);
-  run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores from 2,000 discs, else 1)")
+  run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores from 800 discs, else 1)")
       ->check(CLI::Range(1, 256));
   run_cmd->add_option("--seed", run.seed, "preparation seed (overrides preparation.seed)")
       ->check(CLI::Range(0LL, 9000000000000000000LL));
