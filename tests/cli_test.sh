@@ -76,7 +76,7 @@ b=$(grep -E '"(com_rest|H_cm|L_cm|steps)"' -A2 "$work/res/summary.json")
 check pile_fresh 0 'pile settled at t\* = .*without damping' -- "$bin" run --out "$work/pile1" --cache-dir "$work/cache" --threads 1 --set output.end_time=0.1
 check pile_cached 0 'settled pile from cache' -- "$bin" run --out "$work/pile2" --cache-dir "$work/cache" --threads 1 --set output.end_time=0.1
 # Without --threads: one thread below 800 discs, every core from 800 (apps/run_command.cpp).
-threads_of() { sed -n 's/^ *"threads": \([0-9]*\),*$/\1/p' "$1/summary.json"; }
+threads_of() { /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["threads"])' "$1/summary.json"; }
 check default_threads_small 0 'mu_global' -- "$bin" run "$src/examples/quick.toml" --out "$work/few" --cache-dir "$work/cache" -q --set output.end_time=0.1
 [ "$(threads_of "$work/few")" = 1 ] && ok || bad "default_threads_small: 250 discs ran on $(threads_of "$work/few") threads, not 1"
 check default_threads_large 0 'mu_global' -- "$bin" run "$src/examples/thesis_3_10.toml" --out "$work/many" --cache-dir "$work/cache" -q --set output.end_time=0.1
